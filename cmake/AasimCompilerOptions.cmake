@@ -1,0 +1,20 @@
+# Compiler policy as INTERFACE targets, linked by every aasim target (style.md habit 2).
+
+add_library(aasim_warnings INTERFACE)
+target_compile_options(aasim_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Wunused
+  -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wimplicit-fallthrough)
+if(AASIM_WERROR)
+  target_compile_options(aasim_warnings INTERFACE -Werror)
+endif()
+
+add_library(aasim_opt INTERFACE)
+if(AASIM_SANITIZE)
+  target_compile_options(aasim_opt INTERFACE -fsanitize=address,undefined -fno-sanitize-recover=all
+                                             -fno-omit-frame-pointer -O1 -g)
+  target_link_options(aasim_opt INTERFACE -fsanitize=address,undefined)
+endif()
+
+# Every aasim library and executable links this one target.
+add_library(aasim_policy INTERFACE)
+target_link_libraries(aasim_policy INTERFACE aasim_warnings aasim_opt)

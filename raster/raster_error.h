@@ -1,0 +1,15 @@
+#pragma once
+// Input errors of the raster layer. The message is one line that names the offending input and
+// the problem; callers print it as is.
+
+#include <stdexcept>
+#include <string>
+
+namespace raster {
+
+class RasterError : public std::runtime_error {
+ public:
+  explicit RasterError(const std::string& message) : std::runtime_error(message) {}
+};
+
+}  // namespace raster
