@@ -67,6 +67,13 @@ bool StencilPasses(CompareFunc func, std::uint8_t ref, std::uint8_t mask, std::u
 
 }  // namespace
 
+template <typename Fn>
+void DepthStencilSurface::ForEachTilePixel(int tx, int ty, Fn&& fn) const {
+  for (int y = ty * kTileSize; y < std::min((ty + 1) * kTileSize, config_.height); ++y) {
+    for (int x = tx * kTileSize; x < std::min((tx + 1) * kTileSize, config_.width); ++x) fn(x, y);
+  }
+}
+
 DepthStencilSurface::DepthStencilSurface(const DepthSurfaceConfig& config, SamplePattern pattern)
     : config_(config), pattern_(std::move(pattern)) {
   ValidateConfig(config_, pattern_);
@@ -98,8 +105,8 @@ void DepthStencilSurface::Clear(float depth, std::uint8_t stencil) {
     tile.planeCount = 0;
     tile.zMin = tile.zMax = depth;
   }
-  std::fill(planeIndex_.begin(), planeIndex_.end(), kClearPlane);
-  std::fill(anchorDepth_.begin(), anchorDepth_.end(), depth);
+  // Plane indices and anchored depth are not touched: a Cleared tile reads as the clear depth
+  // without them, and they are (re)initialised when the tile first leaves that state.
   std::fill(stencil_.begin(), stencil_.end(), stencil);
   for (int ty = 0; ty < tilesY_; ++ty) {
     for (int tx = 0; tx < tilesX_; ++tx) RefreshHiStencil(tx, ty);
@@ -116,6 +123,7 @@ void DepthStencilSurface::SetHiStencilPretests(
 
 float DepthStencilSurface::StoredDepth(const ZTile& tile, int pixel, int quadPixel, int x, int y,
                                        int sample) const {
+  if (tile.state == ZTileState::Cleared) return config_.clearDepth;
   if (tile.state == ZTileState::Decompressed) {
     return anchorDepth_[pixel * config_.depthSamples + nearestAnchor_[quadPixel][sample]];
   }
@@ -279,16 +287,14 @@ int DepthStencilSurface::PlaneSlot(int tx, int ty, const ZPlane& plane, RasterCo
     ++counters.zPlaneDecompressions;
     return -1;
   }
+  if (tile.state == ZTileState::Cleared) {
+    ForEachTilePixel(tx, ty, [&](int x, int y) {
+      std::fill_n(&planeIndex_[PixelIndex(x, y) * config_.coverageSamples], config_.coverageSamples, kClearPlane);
+    });
+  }
   tile.planes[tile.planeCount] = plane;
   tile.state = ZTileState::Compressed;
   return tile.planeCount++;
-}
-
-template <typename Fn>
-void DepthStencilSurface::ForEachTilePixel(int tx, int ty, Fn&& fn) const {
-  for (int y = ty * kTileSize; y < std::min((ty + 1) * kTileSize, config_.height); ++y) {
-    for (int x = tx * kTileSize; x < std::min((tx + 1) * kTileSize, config_.width); ++x) fn(x, y);
-  }
 }
 
 void DepthStencilSurface::CompactPlanes(int tx, int ty) {

@@ -42,30 +42,6 @@ void ValidateInput(const DrawInput& input) {
   }
 }
 
-std::vector<TriangleSetup> SetupAll(const DrawInput& input, const Viewport& viewport,
-                                    CullMode cull, RasterCounters& counters) {
-  const std::size_t triangleCount = input.indices.size() / 3;
-  const std::size_t chunks = (triangleCount + kSetupChunk - 1) / kSetupChunk;
-  std::vector<std::vector<TriangleSetup>> perChunk(chunks);
-  std::vector<RasterCounters> chunkCounters(chunks);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t chunk) {
-    const std::size_t end = std::min(triangleCount, (chunk + 1) * kSetupChunk);
-    for (std::size_t t = chunk * kSetupChunk; t < end; ++t) {
-      const std::array<glm::vec4, 3> clip = {input.clipPositions[input.indices[3 * t]],
-                                             input.clipPositions[input.indices[3 * t + 1]],
-                                             input.clipPositions[input.indices[3 * t + 2]]};
-      SetupTriangle(clip, input.firstPrimitiveId + static_cast<std::uint32_t>(t), viewport, cull,
-                    perChunk[chunk], chunkCounters[chunk]);
-    }
-  });
-  std::vector<TriangleSetup> all;
-  for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-    all.insert(all.end(), perChunk[chunk].begin(), perChunk[chunk].end());
-    counters.Merge(chunkCounters[chunk]);
-  }
-  return all;
-}
-
 enum class BlockClass { Empty, Partial, Full };
 
 // The rectangle spanned by every sample position of a block of pixels, in sub-pixel units.
@@ -272,20 +248,6 @@ class BinRasterizer {
   std::array<std::array<std::array<std::int64_t, kMaxCoverageSamples>, 3>, kQuadPixels> deltas_{};
 };
 
-std::vector<std::vector<std::uint32_t>> BinTriangles(const std::vector<TriangleSetup>& triangles,
-                                                     int binsX, int binsY) {
-  std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(binsX) * binsY);
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    const PixelRect& b = triangles[i].bounds;
-    for (int by = b.y0 / kBinSize; by <= (b.y1 - 1) / kBinSize; ++by) {
-      for (int bx = b.x0 / kBinSize; bx <= (b.x1 - 1) / kBinSize; ++bx) {
-        bins[static_cast<std::size_t>(by) * binsX + bx].push_back(static_cast<std::uint32_t>(i));
-      }
-    }
-  }
-  return bins;
-}
-
 }  // namespace
 
 std::size_t RasterResult::QuadCount() const {
@@ -294,28 +256,74 @@ std::size_t RasterResult::QuadCount() const {
   return count;
 }
 
-RasterResult Rasterize(const DrawInput& input, const DrawState& state,
-                       DepthStencilSurface& surface, const RasterOptions& options) {
+void Rasterizer::SetupAll(const DrawInput& input, const Viewport& viewport, CullMode cull) {
+  const std::size_t triangleCount = input.indices.size() / 3;
+  const std::size_t chunks = (triangleCount + kSetupChunk - 1) / kSetupChunk;
+  if (chunkSetups_.size() < chunks) chunkSetups_.resize(chunks);
+  chunkCounters_.assign(chunks, RasterCounters{});
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t chunk) {
+    std::vector<TriangleSetup>& out = chunkSetups_[chunk];
+    out.clear();
+    const std::size_t end = std::min(triangleCount, (chunk + 1) * kSetupChunk);
+    for (std::size_t t = chunk * kSetupChunk; t < end; ++t) {
+      const std::array<glm::vec4, 3> clip = {input.clipPositions[input.indices[3 * t]],
+                                             input.clipPositions[input.indices[3 * t + 1]],
+                                             input.clipPositions[input.indices[3 * t + 2]]};
+      SetupTriangle(clip, input.firstPrimitiveId + static_cast<std::uint32_t>(t), viewport, cull,
+                    out, chunkCounters_[chunk]);
+    }
+  });
+  std::vector<TriangleSetup>& all = result_.triangles;
+  all.clear();
+  for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+    all.insert(all.end(), chunkSetups_[chunk].begin(), chunkSetups_[chunk].end());
+    result_.counters.Merge(chunkCounters_[chunk]);
+  }
+}
+
+void Rasterizer::BinTriangles() {
+  bins_.resize(static_cast<std::size_t>(result_.binsX) * result_.binsY);
+  for (auto& bin : bins_) bin.clear();
+  for (std::size_t i = 0; i < result_.triangles.size(); ++i) {
+    const PixelRect& b = result_.triangles[i].bounds;
+    for (int by = b.y0 / kBinSize; by <= (b.y1 - 1) / kBinSize; ++by) {
+      for (int bx = b.x0 / kBinSize; bx <= (b.x1 - 1) / kBinSize; ++bx) {
+        bins_[static_cast<std::size_t>(by) * result_.binsX + bx].push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+  }
+}
+
+const RasterResult& Rasterizer::Run(const DrawInput& input, const DrawState& state,
+                                    DepthStencilSurface& surface, const RasterOptions& options) {
   ValidateInput(input);
   const DepthSurfaceConfig& config = surface.Config();
-  RasterResult result;
-  result.triangles = SetupAll(input, Viewport{config.width, config.height}, state.cull, result.counters);
-  result.binsX = (config.width + kBinSize - 1) / kBinSize;
-  result.binsY = (config.height + kBinSize - 1) / kBinSize;
-  const auto bins = BinTriangles(result.triangles, result.binsX, result.binsY);
-  result.quadsByBin.resize(bins.size());
-  std::vector<RasterCounters> binCounters(bins.size());
-  tbb::parallel_for(std::size_t{0}, bins.size(), [&](std::size_t bin) {
-    const int bx = static_cast<int>(bin % static_cast<std::size_t>(result.binsX));
-    const int by = static_cast<int>(bin / static_cast<std::size_t>(result.binsX));
+  result_.counters = RasterCounters{};
+  SetupAll(input, Viewport{config.width, config.height}, state.cull);
+  result_.binsX = (config.width + kBinSize - 1) / kBinSize;
+  result_.binsY = (config.height + kBinSize - 1) / kBinSize;
+  BinTriangles();
+  result_.quadsByBin.resize(bins_.size());
+  binCounters_.assign(bins_.size(), RasterCounters{});
+  tbb::parallel_for(std::size_t{0}, bins_.size(), [&](std::size_t bin) {
+    const int bx = static_cast<int>(bin % static_cast<std::size_t>(result_.binsX));
+    const int by = static_cast<int>(bin / static_cast<std::size_t>(result_.binsX));
     const PixelRect rect{bx * kBinSize, by * kBinSize, std::min((bx + 1) * kBinSize, config.width),
                          std::min((by + 1) * kBinSize, config.height)};
-    BinRasterizer(result.triangles, state, surface, options, result.quadsByBin[bin], binCounters[bin])
-        .Run(bins[bin], rect);
+    result_.quadsByBin[bin].clear();
+    BinRasterizer(result_.triangles, state, surface, options, result_.quadsByBin[bin], binCounters_[bin])
+        .Run(bins_[bin], rect);
   });
-  for (const RasterCounters& c : binCounters) result.counters.Merge(c);
-  surface.CountTileStates(result.counters);
-  return result;
+  for (const RasterCounters& c : binCounters_) result_.counters.Merge(c);
+  surface.CountTileStates(result_.counters);
+  return result_;
+}
+
+RasterResult Rasterize(const DrawInput& input, const DrawState& state,
+                       DepthStencilSurface& surface, const RasterOptions& options) {
+  Rasterizer rasterizer;
+  rasterizer.Run(input, state, surface, options);
+  return rasterizer.Release();
 }
 
 std::array<double, 2> SamplePosition(int x, int y, const SamplePattern& pattern, int sample) {

@@ -59,8 +59,29 @@ struct RasterOptions {
   bool collectQuads = true;
 };
 
-// Validates the input (index range, finite positions; RasterError names the first bad one),
-// rasterizes into `surface` and returns quads and counters.
+// Owns the set-ups, bins and quad buffers and reuses them from draw to draw, so a frame loop
+// does not pay for fresh memory every frame.
+class Rasterizer {
+ public:
+  // Validates the input (index range, finite positions; RasterError names the first bad one),
+  // rasterizes into `surface` and returns quads and counters (valid until the next Run).
+  const RasterResult& Run(const DrawInput& input, const DrawState& state,
+                          DepthStencilSurface& surface, const RasterOptions& options = {});
+  // Moves the last result out; the next Run starts with empty buffers.
+  RasterResult Release() { return std::move(result_); }
+
+ private:
+  void SetupAll(const DrawInput& input, const Viewport& viewport, CullMode cull);
+  void BinTriangles();
+
+  RasterResult result_;
+  std::vector<std::vector<TriangleSetup>> chunkSetups_;
+  std::vector<RasterCounters> chunkCounters_;
+  std::vector<std::vector<std::uint32_t>> bins_;
+  std::vector<RasterCounters> binCounters_;
+};
+
+// One-shot convenience: a fresh Rasterizer for a single draw.
 RasterResult Rasterize(const DrawInput& input, const DrawState& state,
                        DepthStencilSurface& surface, const RasterOptions& options = {});
 

@@ -95,11 +95,12 @@ constexpr SampleOffset kRotatedGrid4[] = {{-2, -6}, {6, -2}, {2, 6}, {-6, 2}};
 constexpr SampleOffset kQuincunx2[] = {{0, 0}, {-8, -8}};
 
 // FLIPQUAD (seed 001 "2x FLIPQUAD", aa-facts §8). In a unit pixel the four points are (0, 1/3),
-// (2/3, 0), (1, 2/3), (1/3, 1); a pixel renders only its left-edge and top-edge points, the other
-// two are its right and bottom neighbours' left and top samples. That works because the point
-// set is symmetric under a 180-degree turn, so mirroring it in alternate pixels (checkerboard)
-// moves each neighbour's left/top point onto this pixel's right/bottom point. 1/3 and 2/3 snap to
-// 5/16 and 11/16, i.e. offsets -3 and +3 from the centre (docs/sample-patterns.md).
+// (2/3, 0), (1, 2/3), (1/3, 1); a pixel renders only its left-edge and top-edge points and
+// borrows the other two from its right and bottom neighbours. Mirroring x -> 1 - x in alternate
+// pixels (checkerboard) puts the right neighbour's left point at this pixel's right point; the
+// set's half-turn symmetry makes that mirror also put the lower neighbour's top point at this
+// pixel's bottom point. 1/3 and 2/3 snap to 5/16 and 11/16, offsets -3 and +3 from the centre
+// (derivation in docs/sample-patterns.md).
 constexpr SampleOffset kFlipQuadEven[] = {{-8, -3}, {3, -8}};
 constexpr SampleOffset kFlipQuadOdd[] = {{-8, 3}, {-3, -8}};
 
@@ -167,9 +168,9 @@ std::string BuiltinCatalogue() {
 
 // ---- Halton jitter (aa-facts §5) ------------------------------------------------------------
 
-// floor(16 * h) for the radical inverse h of `index` in `base`, exact in integers so that
-// points on a 1/16 boundary (h = 1/2, 3/4, ...) never round the wrong way. index <= 2^31 keeps
-// base^digits below 3^20 and 16 * numerator inside 64 bits.
+// floor(16 * h) for the radical inverse h of `index` in `base`, computed exactly in integers so
+// the grid cell never depends on floating-point rounding. index <= 2^31 keeps base^digits at most
+// 2^32 (base 2) or 3^20 (base 3), so 16 * numerator fits in 64 bits.
 int RadicalInverseSixteenths(std::uint64_t index, std::uint64_t base) {
   std::uint64_t numerator = 0;
   std::uint64_t denominator = 1;
@@ -214,8 +215,9 @@ constexpr std::array<std::string_view, 5> kJsonKeys = {"name", "samples", "units
 
 std::string KeyList() {
   std::string keys;
-  for (const std::string_view key : kJsonKeys)
+  for (const std::string_view key : kJsonKeys) {
     keys += (keys.empty() ? "" : ", ") + std::string(key);
+  }
   return keys;
 }
 
@@ -237,21 +239,26 @@ class PatternFileParser {
     }
     PerPixel perPixel;
     if (uniform) {
-      perPixel.fill(ParseList(root["offsets"], count, units, std::nullopt));
+      perPixel.fill(ParseList(root.at("offsets"), count, units, std::nullopt));
     } else {
-      perPixel = ParsePixels(root["pixels"], count, units);
+      perPixel = ParsePixels(root.at("pixels"), count, units);
     }
     try {
       return SamplePattern::Create(name, count, perPixel);
     } catch (const RasterError& e) {
-      Fail(std::string(": ") + e.what());
+      throw RasterError(Subject() + ": " + e.what());
     }
   }
 
  private:
+  std::string Subject() const { return "pattern file '" + source_ + "'"; }
+  // "pattern file 'f.json' <problem>", for problems of the file as a whole.
   [[noreturn]] void Fail(const std::string& problem) const {
-    throw RasterError("pattern file '" + source_ + "'" + (problem.starts_with(":") ? "" : " ") +
-                      problem);
+    throw RasterError(Subject() + " " + problem);
+  }
+  // "pattern file 'f.json': <where> <problem>", for problems of one sample.
+  [[noreturn]] void FailAt(const std::string& where, const std::string& problem) const {
+    throw RasterError(Subject() + ": " + where + " " + problem);
   }
 
   nlohmann::json ParseText(std::string_view jsonText) const {
@@ -280,15 +287,16 @@ class PatternFileParser {
   std::string Name(const nlohmann::json& root) const {
     const nlohmann::json& name = Required(root, "name");
     if (!name.is_string() || name.get_ref<const std::string&>().empty()) {
-      Fail("\"name\" must be a non-empty string, found " + name.dump());
+      Fail("needs \"name\" to be a non-empty string, found " + name.dump());
     }
     return name.get<std::string>();
   }
 
   int SampleCount(const nlohmann::json& root) const {
     const nlohmann::json& samples = Required(root, "samples");
-    if (!samples.is_number_integer())
-      Fail("\"samples\" must be an integer, found " + samples.dump());
+    if (!samples.is_number_integer()) {
+      Fail("needs \"samples\" to be an integer, found " + samples.dump());
+    }
     if (samples.get<std::int64_t>() != expectedSamples_) {
       Fail("defines " + samples.dump() + " samples but --samples is " +
            std::to_string(expectedSamples_));
@@ -301,15 +309,12 @@ class PatternFileParser {
     const nlohmann::json& units = root.at("units");
     if (units == "sixteenths") return Units::kSixteenths;
     if (units == "pixels") return Units::kPixels;
-    Fail("\"units\" must be \"sixteenths\" or \"pixels\", found " + units.dump());
+    Fail("needs \"units\" to be \"sixteenths\" or \"pixels\", found " + units.dump());
   }
 
   PerPixel ParsePixels(const nlohmann::json& pixels, int count, Units units) const {
     if (!pixels.is_array() || pixels.size() != kQuadPixels) {
-      Fail(
-          "\"pixels\" must be a list of 4 offset lists (quad pixels X0Y0, X1Y0, X0Y1, X1Y1), "
-          "found " +
-          pixels.dump());
+      Fail("needs \"pixels\" to be 4 lists, one per quad pixel, found " + pixels.dump());
     }
     PerPixel perPixel;
     for (int p = 0; p < kQuadPixels; ++p) perPixel[p] = ParseList(pixels[p], count, units, p);
@@ -335,7 +340,7 @@ class PatternFileParser {
     const std::string where = (pixel ? "quad pixel " + std::to_string(*pixel) + " " : "") +
                               "sample " + std::to_string(sample);
     if (!pair.is_array() || pair.size() != 2 || !pair[0].is_number() || !pair[1].is_number()) {
-      Fail(": " + where + " must be an [x, y] pair of numbers, found " + pair.dump());
+      FailAt(where, "must be an [x, y] pair of numbers, found " + pair.dump());
     }
     const std::optional<int> x = ToSixteenths(pair[0].get<double>(), units);
     const std::optional<int> y = ToSixteenths(pair[1].get<double>(), units);
@@ -344,8 +349,8 @@ class PatternFileParser {
           units == Units::kPixels
               ? "x and y must be multiples of 1/16 in [0, 1) (px from the pixel's top-left corner)"
               : GridRule();
-      Fail(": " + where + (units == Units::kPixels ? " position (" : " offset (") + pair[0].dump() +
-           ", " + pair[1].dump() + ") is off the sample grid: " + rule);
+      FailAt(where, (units == Units::kPixels ? "position (" : "offset (") + pair[0].dump() + ", " +
+                        pair[1].dump() + ") is off the sample grid: " + rule);
     }
     return {*x, *y};
   }
@@ -470,14 +475,15 @@ SamplePattern LoadPatternJson(const std::filesystem::path& path, int expectedSam
 
 std::string FormatPatternJson(const SamplePattern& pattern) {
   const auto pixelJson = [&](int pixel) {
-    nlohmann::json list = nlohmann::json::array();
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
     for (int s = 0; s < pattern.Count(); ++s) {
       const SampleOffset o = pattern.Offset(pixel, s);
       list.push_back({o.x, o.y});
     }
     return list;
   };
-  nlohmann::json root = {{"name", pattern.Name()}, {"samples", pattern.Count()}};
+  // Ordered so the file reads in the documented key order: name, samples, offsets or pixels.
+  nlohmann::ordered_json root = {{"name", pattern.Name()}, {"samples", pattern.Count()}};
   if (pattern.SameInAllPixels()) {
     root["offsets"] = pixelJson(0);
   } else {

@@ -41,16 +41,22 @@ ClipVertex Lerp(const ClipVertex& a, const ClipVertex& b, float t) {
   return out;
 }
 
+// Each plane adds at most one vertex to a convex polygon.
+struct ClipPolygon {
+  std::array<ClipVertex, 3 + std::tuple_size_v<decltype(kClipPlanes)>> vertices;
+  std::size_t size = 0;
+};
+
 // Sutherland-Hodgman against one plane.
-std::vector<ClipVertex> ClipPolygon(const std::vector<ClipVertex>& in, const ClipPlane& plane) {
-  std::vector<ClipVertex> out;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    const ClipVertex& cur = in[i];
-    const ClipVertex& next = in[(i + 1) % in.size()];
+ClipPolygon ClipAgainst(const ClipPolygon& in, const ClipPlane& plane) {
+  ClipPolygon out;
+  for (std::size_t i = 0; i < in.size; ++i) {
+    const ClipVertex& cur = in.vertices[i];
+    const ClipVertex& next = in.vertices[(i + 1) % in.size];
     const float dCur = PlaneDistance(plane, cur.position);
     const float dNext = PlaneDistance(plane, next.position);
-    if (dCur >= 0) out.push_back(cur);
-    if ((dCur >= 0) != (dNext >= 0)) out.push_back(Lerp(cur, next, dCur / (dCur - dNext)));
+    if (dCur >= 0) out.vertices[out.size++] = cur;
+    if ((dCur >= 0) != (dNext >= 0)) out.vertices[out.size++] = Lerp(cur, next, dCur / (dCur - dNext));
   }
   return out;
 }
@@ -156,7 +162,6 @@ void SetupScreenTriangle(std::array<ScreenVertex, 3> v, std::uint32_t primitiveI
   t.zMax = std::max({v[0].z, v[1].z, v[2].z});
   t.doubleArea = area;
   for (int i = 0; i < 3; ++i) {
-    t.vertices[i] = {v[i].x, v[i].y};
     t.invW[i] = v[i].invW;
     t.sourceBarycentrics[i] = v[i].barycentrics;
   }
@@ -172,23 +177,27 @@ void SetupTriangle(const std::array<glm::vec4, 3>& clip, std::uint32_t primitive
                    const Viewport& viewport, CullMode cull, std::vector<TriangleSetup>& out,
                    RasterCounters& counters) {
   ++counters.trianglesIn;
-  std::vector<ClipVertex> polygon = {{clip[0], {1, 0, 0}}, {clip[1], {0, 1, 0}}, {clip[2], {0, 0, 1}}};
+  ClipPolygon polygon;
+  polygon.vertices[0] = {clip[0], {1, 0, 0}};
+  polygon.vertices[1] = {clip[1], {0, 1, 0}};
+  polygon.vertices[2] = {clip[2], {0, 0, 1}};
+  polygon.size = 3;
   bool clipped = false;
   for (const ClipPlane& plane : kClipPlanes) {
-    int inside = 0;
-    for (const ClipVertex& v : polygon) inside += PlaneDistance(plane, v.position) >= 0;
-    if (inside == static_cast<int>(polygon.size())) continue;
-    polygon = ClipPolygon(polygon, plane);
-    clipped = true;
-    if (polygon.size() < 3) {
+    std::size_t inside = 0;
+    for (std::size_t i = 0; i < polygon.size; ++i) inside += PlaneDistance(plane, polygon.vertices[i].position) >= 0;
+    if (inside == polygon.size) continue;
+    if (inside == 0) {
       ++counters.trianglesOutsideView;
       return;
     }
+    polygon = ClipAgainst(polygon, plane);
+    clipped = true;
   }
   if (clipped) ++counters.trianglesClipped;
-  const ScreenVertex first = ToScreen(polygon[0], viewport);
-  for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
-    SetupScreenTriangle({first, ToScreen(polygon[i], viewport), ToScreen(polygon[i + 1], viewport)},
+  const ScreenVertex first = ToScreen(polygon.vertices[0], viewport);
+  for (std::size_t i = 1; i + 1 < polygon.size; ++i) {
+    SetupScreenTriangle({first, ToScreen(polygon.vertices[i], viewport), ToScreen(polygon.vertices[i + 1], viewport)},
                         primitiveId, viewport, cull, out, counters);
   }
 }

@@ -63,7 +63,6 @@ struct TriangleSetup {
   ZPlane depth;
   float zMin = 0.0f, zMax = 0.0f;  // over the vertices
   PixelRect bounds;                 // pixels any of whose samples may be covered, in viewport
-  std::array<std::array<std::int64_t, 2>, 3> vertices{};  // snapped, sub-pixel units
   std::int64_t doubleArea = 0;                               // > 0 (winding normalised)
   std::array<float, 3> invW{};
   // Barycentrics of each set-up vertex in the submitted triangle (identity unless clipped).
