@@ -1,0 +1,70 @@
+// PNG (stb_image_write) and EXR (OpenEXR) writers; see image_io.h.
+
+#include "cli/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <stdexcept>
+
+#include <ImfChannelList.h>
+#include <ImfCompression.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <stb_image_write.h>
+
+#include "cli/output_error.h"
+
+namespace cli {
+namespace {
+
+std::size_t PixelCount(int width, int height) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("image size must be positive");
+  return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+}
+
+}  // namespace
+
+std::uint8_t EncodeSrgb8(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
+}
+
+void WritePng(const std::filesystem::path& path, int width, int height, int channels,
+              std::span<const std::uint8_t> pixels) {
+  if (channels < 1 || channels > 4 || pixels.size() != PixelCount(width, height) * channels) {
+    throw std::invalid_argument("WritePng: pixel buffer does not match the image size");
+  }
+  if (stbi_write_png(path.c_str(), width, height, channels, pixels.data(), width * channels) == 0) {
+    throw OutputError(path.string() + ": cannot write PNG");
+  }
+}
+
+void WriteExr(const std::filesystem::path& path, int width, int height,
+              std::span<const ExrChannel> channels) {
+  const std::size_t pixelCount = PixelCount(width, height);
+  Imf::Header header(width, height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  Imf::FrameBuffer frameBuffer;
+  for (const ExrChannel& channel : channels) {
+    if (channel.values.size() != pixelCount) {
+      throw std::invalid_argument("WriteExr: channel " + channel.name + " does not match the size");
+    }
+    header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
+    // OpenEXR's Slice takes a mutable pointer for both directions; writing only reads it.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(channel.values.data()));
+    frameBuffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                                sizeof(float) * static_cast<std::size_t>(width)));
+  }
+  try {
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frameBuffer);
+    file.writePixels(height);
+  } catch (const std::exception& error) {
+    throw OutputError(path.string() + ": cannot write EXR: " + error.what());
+  }
+}
+
+}  // namespace cli

@@ -1,0 +1,30 @@
+#pragma once
+// Image files of the command line: 8-bit PNG previews (sRGB-encoded, DESIGN.md "Conventions")
+// and float EXR with named channels (linear). Pixels are row-major, top row first.
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace cli {
+
+// Linear [0, 1] -> 8-bit sRGB (IEC 61966-2-1 transfer function); out-of-range values clamp.
+std::uint8_t EncodeSrgb8(float linear);
+
+// `pixels` holds width * height * channels bytes (1 = grey, 3 = RGB, 4 = RGBA).
+// Throws OutputError naming the path.
+void WritePng(const std::filesystem::path& path, int width, int height, int channels,
+              std::span<const std::uint8_t> pixels);
+
+struct ExrChannel {
+  std::string name;
+  std::span<const float> values;  // width * height
+};
+
+// One 32-bit float channel per entry, ZIP compression. Throws OutputError naming the path.
+void WriteExr(const std::filesystem::path& path, int width, int height,
+              std::span<const ExrChannel> channels);
+
+}  // namespace cli

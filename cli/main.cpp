@@ -1,0 +1,66 @@
+// The `aasim` command line: parses the subcommand, maps errors to one stderr line and an exit
+// code (0 success or help, 1 runtime input/output error, 2 invalid arguments), then runs it.
+
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/raster_command.h"
+#include "cli/raster_options.h"
+
+namespace {
+
+constexpr int kExitRuntimeError = 1;
+constexpr int kExitUsageError = 2;
+
+// Library messages are meant to be one line; a stray newline must not break that contract.
+std::string OneLine(std::string message) {
+  for (char& c : message) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return message;
+}
+
+int ReportUsageError(const std::string& command, const CLI::ParseError& error) {
+  std::cerr << command << ": " << OneLine(error.what()) << '\n';
+  return kExitUsageError;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "aasim: a software model of GCN-class GPU coverage hardware (rasterizer, EQAA "
+      "surfaces, anti-aliasing passes)",
+      "aasim"};
+  app.require_subcommand(0, 1);
+  cli::RasterCommandOptions rasterOptions;
+  CLI::App* raster = cli::AddRasterCommand(app, rasterOptions);
+
+  try {
+    app.parse(argc, argv);
+    if (raster->parsed()) cli::ResolveRasterOptions(rasterOptions);
+  } catch (const CLI::Success& help) {
+    return app.exit(help);
+  } catch (const CLI::ParseError& error) {
+    return ReportUsageError(raster->parsed() ? "aasim raster" : "aasim", error);
+  }
+
+  if (!raster->parsed()) {
+    std::cout << app.help();
+    return 0;
+  }
+  try {
+    cli::RunRasterCommand(rasterOptions, std::cout);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "aasim: out of memory\n";
+    return kExitRuntimeError;
+  } catch (const std::exception& error) {
+    std::cerr << "aasim: " << OneLine(error.what()) << '\n';
+    return kExitRuntimeError;
+  }
+  return 0;
+}

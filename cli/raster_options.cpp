@@ -1,0 +1,185 @@
+// Option registry and cross-option checks of `aasim raster` (see raster_options.h).
+
+#include "cli/raster_options.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <iterator>
+#include <stdexcept>
+#include <vector>
+
+#include <oneapi/tbb/info.h>
+
+#include "raster/limits.h"
+#include "raster/rasterizer.h"
+#include "raster/sample_pattern.h"
+#include "scenes/scene.h"
+
+namespace cli {
+namespace {
+
+struct NamedCullMode {
+  std::string_view name;
+  raster::CullMode mode;
+};
+constexpr NamedCullMode kCullModes[] = {
+    {"back", raster::CullMode::Back},
+    {"front", raster::CullMode::Front},
+    {"none", raster::CullMode::None},
+};
+
+struct NamedCompareFunc {
+  std::string_view name;
+  raster::CompareFunc func;
+};
+constexpr NamedCompareFunc kDepthFuncs[] = {
+    {"less", raster::CompareFunc::Less},       {"lequal", raster::CompareFunc::LessEqual},
+    {"greater", raster::CompareFunc::Greater}, {"gequal", raster::CompareFunc::GreaterEqual},
+    {"equal", raster::CompareFunc::Equal},     {"notequal", raster::CompareFunc::NotEqual},
+    {"always", raster::CompareFunc::Always},   {"never", raster::CompareFunc::Never},
+};
+
+template <typename Table>
+std::vector<std::string> Names(const Table& table) {
+  std::vector<std::string> names;
+  for (const auto& entry : table) names.emplace_back(entry.name);
+  return names;
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
+  return joined;
+}
+
+std::string FormatGiB(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f", static_cast<double>(bytes) / double(1u << 30));
+  return text;
+}
+
+void AddSceneOptions(CLI::App& command, RasterCommandOptions& options) {
+  options.scene = "builtin:" + std::string(scenes::kDefaultSceneName);
+  command
+      .add_option("--scene", options.scene,
+                  "Scene: a glTF 2.0 file (.gltf/.glb) or builtin:NAME with NAME one of " +
+                      JoinNames(scenes::BuiltinSceneNames()))
+      ->type_name("FILE|builtin:NAME")
+      ->capture_default_str();
+  command.add_option("--width", options.width, "Viewport width in pixels")
+      ->check(CLI::Range(1, raster::kMaxDimension))
+      ->capture_default_str();
+  command.add_option("--height", options.height, "Viewport height in pixels")
+      ->check(CLI::Range(1, raster::kMaxDimension))
+      ->capture_default_str();
+}
+
+void AddSurfaceOptions(CLI::App& command, RasterCommandOptions& options) {
+  command.add_option("--samples", options.samples, "Coverage samples per pixel S")
+      ->check(CLI::IsMember({1, 2, 4, 8, 16}))
+      ->capture_default_str();
+  command
+      .add_option("--depth-samples", options.depthSamples,
+                  "Anchored depth samples per pixel Z, at most S [default: min(S, 8)]")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
+  command
+      .add_option("--pattern", options.pattern,
+                  "Sample pattern: a JSON file (a path with '/' or ending in .json; format in "
+                  "docs/sample-patterns.md) or a built-in: " +
+                      JoinNames(raster::BuiltinPatternNames()))
+      ->type_name("NAME|FILE")
+      ->capture_default_str();
+  command
+      .add_option("--max-zplanes", options.maxZPlanes,
+                  "Z planes an 8x8 tile holds before it decompresses (0 = no plane compression)")
+      ->check(CLI::Range(0, raster::kMaxZPlanesPerTile))
+      ->capture_default_str();
+}
+
+void AddStateOptions(CLI::App& command, RasterCommandOptions& options) {
+  command.add_option("--cull", options.cull, "Face culling (counter-clockwise = front)")
+      ->check(CLI::IsMember(Names(kCullModes)))
+      ->capture_default_str();
+  command
+      .add_option("--depth-func", options.depthFunc,
+                  "Depth test: a sample passes when its depth FUNC the stored depth")
+      ->check(CLI::IsMember(Names(kDepthFuncs)))
+      ->capture_default_str();
+  command.add_flag("--no-hiz", options.noHiZ, "Disable hi-Z tile rejection");
+}
+
+void AddRunOptions(CLI::App& command, RasterCommandOptions& options) {
+  options.threads = tbb::info::default_concurrency();
+  command.add_option("--threads", options.threads, "Worker threads [default: all cores]")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  command
+      .add_option("--out", options.out,
+                  "Output directory for coverage.png, primitives.png, depth.exr, counters.json "
+                  "(created if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+}
+
+}  // namespace
+
+CLI::App* AddRasterCommand(CLI::App& app, RasterCommandOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "raster",
+      "Rasterize a scene into an EQAA depth surface; write coverage and depth images "
+      "and counters");
+  // Scripts append overrides to a base command line, so a repeated option means its last value.
+  command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  AddSceneOptions(*command, options);
+  AddSurfaceOptions(*command, options);
+  AddStateOptions(*command, options);
+  AddRunOptions(*command, options);
+  return command;
+}
+
+std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthSamples) {
+  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+  const std::uint64_t surface = samples + 4u * depthSamples + 1u;
+  const std::uint64_t quads = sizeof(raster::QuadFragment) / raster::kQuadPixels;
+  const std::uint64_t ownership = sizeof(float) + sizeof(std::uint32_t) + 1u;
+  const std::uint64_t images = 4u * (depthSamples + 2u) + 4u;  // EXR channels, two PNGs
+  return pixels * (surface + quads + ownership + images);
+}
+
+void ResolveRasterOptions(RasterCommandOptions& options) {
+  if (options.depthSamples == 0) {
+    options.depthSamples = std::min(options.samples, raster::kMaxDepthSamples);
+  }
+  if (options.depthSamples > options.samples) {
+    throw CLI::ValidationError("--depth-samples " + std::to_string(options.depthSamples) +
+                               " exceeds --samples " + std::to_string(options.samples) +
+                               ": need S >= Z");
+  }
+  const std::uint64_t bytes =
+      EstimateRasterBytes(options.width, options.height, options.samples, options.depthSamples);
+  if (bytes > kMaxRasterBytes) {
+    throw CLI::ValidationError(
+        "--width " + std::to_string(options.width) + " --height " + std::to_string(options.height) +
+        " --samples " + std::to_string(options.samples) + " --depth-samples " +
+        std::to_string(options.depthSamples) + ": needs about " + FormatGiB(bytes) +
+        " GiB (depth surface, quads and images), over the " + FormatGiB(kMaxRasterBytes) +
+        " GiB limit");
+  }
+}
+
+raster::CullMode CullModeByName(std::string_view name) {
+  const auto* found = std::find_if(std::begin(kCullModes), std::end(kCullModes),
+                                   [&](const NamedCullMode& entry) { return entry.name == name; });
+  if (found == std::end(kCullModes)) throw std::invalid_argument("unknown cull mode");
+  return found->mode;
+}
+
+raster::CompareFunc DepthFuncByName(std::string_view name) {
+  const auto* found =
+      std::find_if(std::begin(kDepthFuncs), std::end(kDepthFuncs),
+                   [&](const NamedCompareFunc& entry) { return entry.name == name; });
+  if (found == std::end(kDepthFuncs)) throw std::invalid_argument("unknown depth function");
+  return found->func;
+}
+
+}  // namespace cli

@@ -1,0 +1,413 @@
+// `aasim raster` end to end: the real binary writes its four outputs on good input, and every
+// bad input gives a non-zero exit, one stderr line naming the input and no output files. Also
+// the in-process pieces the outputs are built from (sample ownership replay).
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <ImfChannelList.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <nlohmann/json.hpp>
+#include <stb_image.h>
+
+#include "cli/ownership.h"
+#include "raster/counters.h"
+#include "raster/rasterizer.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// Appended piecewise: GCC 12 flags `" " + string` with a false -Wrestrict.
+void AppendQuoted(std::string& command, std::string_view prefix, const std::string& arg) {
+  command += prefix;
+  command += '\'';
+  command += arg;
+  command += '\'';
+}
+
+// Runs the built binary through the shell with stdout and stderr captured in `scratch`.
+CommandResult RunAasim(const std::vector<std::string>& args, const fs::path& scratch) {
+  std::string command;
+  AppendQuoted(command, "", AASIM_BINARY);
+  for (const std::string& arg : args) AppendQuoted(command, " ", arg);
+  const fs::path outPath = scratch / "stdout.txt", errPath = scratch / "stderr.txt";
+  AppendQuoted(command, " >", outPath.string());
+  AppendQuoted(command, " 2>", errPath.string());
+  const int status = std::system(command.c_str());
+  CommandResult result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = ReadText(outPath);
+  result.err = ReadText(errPath);
+  return result;
+}
+
+std::vector<std::string> FilesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  if (!fs::exists(dir)) return names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// --- Small glTF files with the geometry in a base64 data URI. ---
+
+std::string Base64(const std::vector<std::uint8_t>& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t left = bytes.size() - i;
+    const std::uint32_t chunk = (std::uint32_t{bytes[i]} << 16) |
+                                (left > 1 ? std::uint32_t{bytes[i + 1]} << 8 : 0u) |
+                                (left > 2 ? std::uint32_t{bytes[i + 2]} : 0u);
+    text += kAlphabet[(chunk >> 18) & 63];
+    text += kAlphabet[(chunk >> 12) & 63];
+    text += left > 1 ? kAlphabet[(chunk >> 6) & 63] : '=';
+    text += left > 2 ? kAlphabet[chunk & 63] : '=';
+  }
+  return text;
+}
+
+template <typename T>
+void AppendBytes(std::vector<std::uint8_t>& bytes, const std::vector<T>& values) {
+  const std::size_t offset = bytes.size();
+  bytes.resize(offset + values.size() * sizeof(T));
+  std::memcpy(bytes.data() + offset, values.data(), values.size() * sizeof(T));
+}
+
+// One mesh, one triangle-list primitive: float VEC3 positions and uint32 indices.
+std::string TriangleGltf(const std::vector<float>& positions,
+                         const std::vector<std::uint32_t>& indices) {
+  std::vector<std::uint8_t> buffer;
+  AppendBytes(buffer, positions);
+  const std::size_t positionBytes = buffer.size();
+  AppendBytes(buffer, indices);
+  const nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers",
+       {{{"byteLength", buffer.size()},
+         {"uri", "data:application/octet-stream;base64," + Base64(buffer)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", positionBytes}},
+        {{"buffer", 0},
+         {"byteOffset", positionBytes},
+         {"byteLength", buffer.size() - positionBytes}}}},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", positions.size() / 3},
+         {"type", "VEC3"}},
+        {{"bufferView", 1},
+         {"componentType", 5125},
+         {"count", indices.size()},
+         {"type", "SCALAR"}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  return gltf.dump();
+}
+
+// x, y, z of three vertices.
+const std::vector<float> kTrianglePositions{
+    -1.0f, -1.0f, 0.0f,  //
+    1.0f,  -1.0f, 0.0f,  //
+    0.0f,  1.0f,  0.0f,
+};
+
+fs::path WriteFile(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+class CliRasterTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    std::replace(name.begin(), name.end(), '/', '_');
+    scratch_ = fs::temp_directory_path() / ("aasim_cli_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(scratch_);
+    fs::create_directories(scratch_);
+  }
+  void TearDown() override { fs::remove_all(scratch_); }
+
+  fs::path scratch_;
+};
+
+std::vector<std::string> SmallRun(const fs::path& out) {
+  return {"raster",    "--scene", "builtin:default", "--width",   "64", "--height", "48",
+          "--samples", "4",       "--out",           out.string()};
+}
+
+std::vector<std::string> ExrChannelNames(const fs::path& path) {
+  Imf::InputFile file(path.c_str());
+  std::vector<std::string> names;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+    names.emplace_back(it.name());
+  }
+  return names;
+}
+
+TEST_F(CliRasterTest, WritesTheFourOutputsAndCountersMatchTheFieldTable) {
+  const fs::path out = scratch_ / "out";
+  const CommandResult run = RunAasim(SmallRun(out), scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  EXPECT_NE(run.out.find("builtin:default"), std::string::npos) << run.out;
+  EXPECT_EQ(FilesIn(out), (std::vector<std::string>{"counters.json", "coverage.png", "depth.exr",
+                                                    "primitives.png"}));
+
+  const nlohmann::ordered_json json =
+      nlohmann::ordered_json::parse(ReadText(out / "counters.json"));
+  EXPECT_EQ(json["schema"], "aasim.raster.counters");
+  EXPECT_EQ(json["version"], 1);
+  EXPECT_EQ(json["config"]["width"], 64);
+  EXPECT_EQ(json["config"]["samples"], 4);
+  EXPECT_EQ(json["config"]["depth_samples"], 4);
+  std::vector<std::string> keys, fieldNames;
+  for (const auto& [key, value] : json["counters"].items()) {
+    keys.push_back(key);
+    EXPECT_TRUE(value.is_number_unsigned()) << key;
+  }
+  for (const raster::RasterCounterField& field : raster::kRasterCounterFields) {
+    fieldNames.emplace_back(field.name);
+  }
+  EXPECT_EQ(keys, fieldNames);
+  EXPECT_GT(json["counters"]["samples/covered"].get<std::uint64_t>(), 0u);
+
+  int width = 0, height = 0, channels = 0;
+  ASSERT_TRUE(stbi_info((out / "coverage.png").c_str(), &width, &height, &channels));
+  EXPECT_EQ(width, 64);
+  EXPECT_EQ(height, 48);
+  EXPECT_EQ(channels, 1);
+  ASSERT_TRUE(stbi_info((out / "primitives.png").c_str(), &width, &height, &channels));
+  EXPECT_EQ(channels, 3);
+  // OpenEXR lists channels sorted by name.
+  EXPECT_EQ(
+      ExrChannelNames(out / "depth.exr"),
+      (std::vector<std::string>{"Z", "coverage", "depth.s0", "depth.s1", "depth.s2", "depth.s3"}));
+}
+
+TEST_F(CliRasterTest, OutputsAreIdenticalWithOneAndTwoThreads) {
+  std::vector<std::string> one = SmallRun(scratch_ / "one"), two = SmallRun(scratch_ / "two");
+  one.insert(one.end(), {"--threads", "1"});
+  two.insert(two.end(), {"--threads", "2"});
+  ASSERT_EQ(RunAasim(one, scratch_).exitCode, 0);
+  ASSERT_EQ(RunAasim(two, scratch_).exitCode, 0);
+  for (const char* file : {"coverage.png", "primitives.png", "depth.exr"}) {
+    EXPECT_EQ(ReadText(scratch_ / "one" / file), ReadText(scratch_ / "two" / file)) << file;
+  }
+  const auto counters = [&](const char* dir) {
+    return nlohmann::json::parse(ReadText(scratch_ / dir / "counters.json"))["counters"];
+  };
+  EXPECT_EQ(counters("one"), counters("two"));
+}
+
+TEST_F(CliRasterTest, RendersAValidGltfFile) {
+  const fs::path scene =
+      WriteFile(scratch_ / "tri.gltf", TriangleGltf(kTrianglePositions, {0, 1, 2}));
+  const fs::path out = scratch_ / "out";
+  const CommandResult run = RunAasim({"raster", "--scene", scene.string(), "--width", "32",
+                                      "--height", "32", "--cull", "none", "--out", out.string()},
+                                     scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(ReadText(out / "counters.json"));
+  EXPECT_EQ(json["counters"]["triangles/in"], 1);
+  EXPECT_GT(json["counters"]["samples/covered"].get<std::uint64_t>(), 0u);
+}
+
+TEST_F(CliRasterTest, HelpExplainsEveryOption) {
+  const CommandResult run = RunAasim({"raster", "--help"}, scratch_);
+  EXPECT_EQ(run.exitCode, 0);
+  EXPECT_EQ(run.err, "");
+  for (const char* option :
+       {"--scene", "--width", "--height", "--samples", "--depth-samples", "--pattern",
+        "--max-zplanes", "--cull", "--depth-func", "--no-hiz", "--threads", "--out"}) {
+    EXPECT_NE(run.out.find(option), std::string::npos) << option;
+  }
+  EXPECT_NE(run.out.find("[1 - 16384]=1920"), std::string::npos) << run.out;
+}
+
+TEST_F(CliRasterTest, NoArgumentsPrintsHelpAndSucceeds) {
+  const CommandResult run = RunAasim({}, scratch_);
+  EXPECT_EQ(run.exitCode, 0);
+  EXPECT_NE(run.out.find("raster"), std::string::npos) << run.out;
+}
+
+// --- Every bad input: exit code, one stderr line naming the input, no output files. ---
+
+struct BadInput {
+  std::string name;
+  // Extra arguments after `raster --out DIR`; may write input files into the scratch dir.
+  std::function<std::vector<std::string>(const fs::path& scratch)> args;
+  std::string named;   // stderr must name the input...
+  std::string reason;  // ...and say this about it, so it failed for the intended reason
+  int exitCode;
+};
+
+// Names the case in test listings instead of gtest's byte dump.
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
+std::vector<BadInput> BadInputs() {
+  const auto fixed = [](std::vector<std::string> args) {
+    return [args](const fs::path&) { return args; };
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  return {
+      {"SamplesNotAPowerOfTwo", fixed({"--samples", "3"}), "--samples", "not in {1,2,4,8,16}", 2},
+      {"DepthSamplesAboveSamples", fixed({"--samples", "4", "--depth-samples", "8"}),
+       "--depth-samples 8", "need S >= Z", 2},
+      {"WidthZero", fixed({"--width", "0"}), "--width", "not in range 1 to 16384", 2},
+      {"WidthTooLarge", fixed({"--width", "100000"}), "100000", "not in range", 2},
+      {"MaxZPlanesTooLarge", fixed({"--max-zplanes", "17"}), "--max-zplanes",
+       "not in range 0 to 16", 2},
+      {"SurfaceOverMemoryLimit",
+       fixed({"--width", "16384", "--height", "16384", "--samples", "16"}), "--width 16384",
+       "4.0 GiB limit", 2},
+      {"UnknownPattern", fixed({"--pattern", "nosuch"}), "nosuch", "unknown sample pattern", 1},
+      {"PatternFileOffGrid",
+       [](const fs::path& scratch) -> std::vector<std::string> {
+         const fs::path file = WriteFile(scratch / "offgrid.json",
+                                         R"({"name": "offgrid", "samples": 4,
+                           "offsets": [[-2, -6], [6.5, -2], [-6, 2], [2, 6]]})");
+         return {"--samples", "4", "--pattern", file.string()};
+       },
+       "offgrid.json", "off the sample grid", 1},
+      {"MalformedGltf",
+       [](const fs::path& scratch) -> std::vector<std::string> {
+         return {"--scene", WriteFile(scratch / "x.gltf", "garbage{").string()};
+       },
+       "x.gltf", "cannot load glTF", 1},
+      {"GltfWithNanVertex",
+       [nan](const fs::path& scratch) -> std::vector<std::string> {
+         std::vector<float> positions = kTrianglePositions;
+         positions[4] = nan;
+         return {"--scene",
+                 WriteFile(scratch / "nan.gltf", TriangleGltf(positions, {0, 1, 2})).string()};
+       },
+       "nan.gltf", "non-finite", 1},
+      {"GltfWithIndexOutOfRange",
+       [](const fs::path& scratch) -> std::vector<std::string> {
+         return {"--scene",
+                 WriteFile(scratch / "index.gltf", TriangleGltf(kTrianglePositions, {0, 1, 7}))
+                     .string()};
+       },
+       "index.gltf", "out of range", 1},
+      {"UnknownBuiltinScene", fixed({"--scene", "builtin:nosuch"}), "builtin:nosuch", "unknown", 1},
+      {"OutUnderARegularFile",
+       [](const fs::path& scratch) -> std::vector<std::string> {
+         WriteFile(scratch / "somefile", "x");
+         return {"--out", (scratch / "somefile" / "out").string()};
+       },
+       "somefile/out", "cannot create directory: Not a directory", 1},
+  };
+}
+
+class CliRasterBadInputTest : public CliRasterTest,
+                              public ::testing::WithParamInterface<BadInput> {};
+
+TEST_P(CliRasterBadInputTest, FailsWithOneLineNamingTheInputAndWritesNothing) {
+  const BadInput& input = GetParam();
+  const fs::path out = scratch_ / "out";
+  std::vector<std::string> args{"raster", "--width", "64", "--height", "48", "--out", out.string()};
+  const std::vector<std::string> extra = input.args(scratch_);
+  args.insert(args.end(), extra.begin(), extra.end());
+
+  const CommandResult run = RunAasim(args, scratch_);
+  EXPECT_EQ(run.exitCode, input.exitCode) << run.err;
+  ASSERT_FALSE(run.err.empty());
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_EQ(run.err.back(), '\n');
+  EXPECT_NE(run.err.find(input.named), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(input.reason), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.rfind(input.exitCode == 2 ? "aasim raster: " : "aasim: ", 0), 0u) << run.err;
+  EXPECT_EQ(FilesIn(out), std::vector<std::string>{}) << run.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(Inputs, CliRasterBadInputTest, ::testing::ValuesIn(BadInputs()),
+                         [](const auto& param) { return param.param.name; });
+
+// --- Sample ownership replay (cli/ownership.h). ---
+
+raster::QuadFragment Quad(int x, int y, std::uint32_t primitive,
+                          std::initializer_list<std::pair<int, int>> passedSamples) {
+  raster::QuadFragment quad;
+  quad.x = static_cast<std::uint16_t>(x);
+  quad.y = static_cast<std::uint16_t>(y);
+  quad.primitiveId = primitive;
+  for (const auto& [pixel, sample] : passedSamples) quad.passed.SetSample(pixel, sample);
+  quad.covered = quad.passed;
+  return quad;
+}
+
+raster::RasterResult OneBin(std::vector<raster::QuadFragment> quads) {
+  raster::RasterResult result;
+  result.binsX = 1;
+  result.binsY = 1;
+  result.quadsByBin.push_back(std::move(quads));
+  return result;
+}
+
+TEST(CliOwnership, LastPassingWriterOwnsEachSample) {
+  // S = 4. Pixel 0: all four samples by 5. Pixel 1: 5 writes samples 0, 1, then 7 overwrites
+  // 1 and adds 2. Pixel 3: one sample each for 9 and 3, a tie.
+  const raster::RasterResult result = OneBin({
+      Quad(0, 0, 5, {{0, 0}, {0, 1}, {0, 2}, {0, 3}, {1, 0}, {1, 1}}),
+      Quad(0, 0, 7, {{1, 1}, {1, 2}}),
+      Quad(0, 0, 9, {{3, 0}}),
+      Quad(0, 0, 3, {{3, 1}}),
+  });
+  const cli::PixelOwnership own = cli::ComputeOwnership(result, 2, 2, 4);
+  EXPECT_EQ(own.coverage, (std::vector<float>{1.0f, 0.75f, 0.0f, 0.5f}));
+  EXPECT_EQ(own.majorityPrimitive, (std::vector<std::uint32_t>{5, 7, cli::kNoPrimitive, 3}));
+  EXPECT_EQ(own.ownerCount, (std::vector<std::uint8_t>{1, 2, 0, 2}));
+  EXPECT_EQ(own.PixelsCovered(), 3u);
+  EXPECT_EQ(own.PixelsPartial(), 2u);
+
+  const std::vector<std::uint8_t> coverage = cli::CoverageImage(own);
+  EXPECT_EQ(coverage, (std::vector<std::uint8_t>{255, 225, 0, 188}));
+  const std::vector<std::uint8_t> primitives = cli::PrimitiveImage(own);
+  EXPECT_EQ(std::vector<std::uint8_t>(primitives.begin() + 6, primitives.begin() + 9),
+            (std::vector<std::uint8_t>{0, 0, 0}));
+  EXPECT_GT(primitives[0] + primitives[1] + primitives[2], 0);
+}
+
+TEST(CliOwnership, QuadOutsideItsBinIsReported) {
+  const raster::RasterResult result = OneBin({Quad(40, 0, 1, {{0, 0}})});
+  EXPECT_THROW(cli::ComputeOwnership(result, 32, 32, 1), std::logic_error);
+}
+
+}  // namespace
