@@ -223,6 +223,8 @@ PixelDepthResult DepthStencilSurface::TestPixel(int x, int y, SampleMask covered
     passed |= static_cast<SampleMask>(pass << s);
   }
   result.depthPassed = passed;
+  const bool guessed = depth.testEnable && tiles_[tileIndex].state == ZTileState::Decompressed;
+  result.depthExact = guessed ? static_cast<SampleMask>(covered & AllSamples(config_.depthSamples)) : covered;
   counters.samplesDepthPassed += static_cast<std::uint64_t>(std::popcount(passed));
   if (stencil.enable) {
     result.stencilWritten =

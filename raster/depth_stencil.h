@@ -102,6 +102,10 @@ struct ZTile {
 struct PixelDepthResult {
   SampleMask stencilPassed = 0;
   SampleMask depthPassed = 0;  // passed depth and stencil
+  // Stencil-passing samples whose depth test was exact: anchored samples, and unanchored ones
+  // while the tile is cleared or compressed. The others were tested against their nearest
+  // anchor, a guess the colour block treats as "untestable" (seed 001, 2F4S example).
+  SampleMask depthExact = 0;
   bool stencilWritten = false;
   float writtenMin = 1.0f, writtenMax = 0.0f;  // depths written (empty when min > max)
 };

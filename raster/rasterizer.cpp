@@ -189,6 +189,7 @@ class BinRasterizer {
       const int x = quad.x + (p & 1), y = quad.y + (p >> 1);
       const PixelDepthResult r = surface_.TestPixel(x, y, covered, tri, state_.depth, state_.stencil, counters_);
       quad.passed.SetPixel(p, r.depthPassed);
+      quad.depthExact.SetPixel(p, r.depthExact);
       writes.fullyWrittenPixels += r.depthPassed == all;
       writes.min = std::min(writes.min, r.writtenMin);
       writes.max = std::max(writes.max, r.writtenMax);

@@ -42,6 +42,7 @@ struct QuadFragment {
   std::uint32_t setupIndex = 0;  // into RasterResult::triangles, for interpolation
   QuadCoverage covered;          // before depth/stencil
   QuadCoverage passed;           // after depth/stencil
+  QuadCoverage depthExact;       // see PixelDepthResult::depthExact
   std::array<std::uint8_t, kQuadPixels> centroid{};  // sample index, kCentroidAtCentre/None
   bool frontFacing = true;
 };
