@@ -386,4 +386,20 @@ Colour EqaaSurface::FetchSample(int x, int y, int sample) const {
   return Slot(x, y, FetchFragmentIndex(visible, sample)).colour;
 }
 
+void EqaaSurface::ExpandFmask() {
+  if (layout_.IsEqaa()) {
+    throw std::logic_error("FMASK expand needs F == S; " + EqaaName(config_) + " cannot hold a colour per sample");
+  }
+  const int samples = config_.coverageSamples;
+  std::vector<FragmentSlot> expanded(static_cast<std::size_t>(samples));
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      for (int s = 0; s < samples; ++s) expanded[s] = Slot(x, y, layout_.Code(Fmask(x, y), s));
+      const std::size_t pixel = static_cast<std::size_t>(PixelIndex(x, y));
+      std::copy(expanded.begin(), expanded.end(), slots_.begin() + static_cast<std::ptrdiff_t>(pixel * samples));
+      fmask_[pixel] = layout_.ExpandedValue();
+    }
+  }
+}
+
 }  // namespace fmask

@@ -176,6 +176,13 @@ class EqaaSurface {
   // hw-facts §1.4: the shader fetch path; UNKNOWN reads fragment 0 (Mesa's 3-bit index).
   Colour FetchSample(int x, int y, int sample) const;
 
+  // hw-facts §1.6 FMASK expand: every sample's colour is copied into its own slot and FMASK is
+  // reset to the identity, so FMASK-unaware image stores see per-sample colour. Only defined
+  // for F == S (RADV and radeonsi do not expand EQAA surfaces); throws std::logic_error
+  // otherwise. FMASK_DECOMPRESS has no counterpart: aasim does not model CMASK compression,
+  // so its FMASK is always in decompressed form.
+  void ExpandFmask();
+
  private:
   int PixelIndex(int x, int y) const { return y * width_ + x; }
   static FmaskLayout ValidatedLayout(const EqaaConfig& config);

@@ -167,6 +167,20 @@ TEST(EqaaPolicies, PerQuadSharesOneVictimAcrossTheQuad) {
   }
 }
 
+// FMASK expand (hw-facts §1.6) keeps every sample's colour and leaves the identity mapping.
+TEST(EqaaSurfaceOps, ExpandKeepsPerSampleColours) {
+  EqaaSurface surface(2, 2, {4, 4, 4}, PolicyByName("hraa"));
+  Apply(surface, PixelFragment(kBlueId, 0b0110, 0b0110, 0b1111), kBlue);
+  Apply(surface, PixelFragment(kRedId, 0b0100, 0b0100, 0b1111), kRed);
+  std::vector<Colour> before;
+  for (int s = 0; s < 4; ++s) before.push_back(surface.FetchSample(0, 0, s));
+  surface.ExpandFmask();
+  EXPECT_EQ(surface.Fmask(0, 0), surface.Layout().ExpandedValue());
+  for (int s = 0; s < 4; ++s) EXPECT_EQ(surface.FetchSample(0, 0, s), before[s]) << s;
+  EqaaSurface eqaa(2, 2, {4, 4, 2}, PolicyByName("hraa"));
+  EXPECT_THROW(eqaa.ExpandFmask(), std::logic_error);
+}
+
 TEST(EqaaConfig, LegalModesAndClearErrors) {
   EXPECT_NO_THROW(ValidateEqaaConfig({8, 8, 1}));
   EXPECT_NO_THROW(ValidateEqaaConfig({8, 4, 2}));
