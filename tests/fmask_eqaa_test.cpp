@@ -6,6 +6,8 @@
 #include <bit>
 #include <stdexcept>
 
+#include <tbb/global_control.h>
+
 #include "fmask/eqaa_surface.h"
 #include "raster/sample_pattern.h"
 #include "raster_test_util.h"
@@ -262,6 +264,39 @@ TEST(EqaaInvariants, RandomSoups) {
       }
     }
   }
+}
+
+// Bins are applied in parallel; FMASK, slots, counters and traces must not depend on it.
+TEST(EqaaDeterminism, IdenticalForAnyThreadCount) {
+  constexpr int kWidth = 96, kHeight = 64;
+  raster::testing::Random rng(9);
+  raster::testing::Mesh mesh;
+  for (int t = 0; t < 800; ++t) {
+    const double cx = rng.Uniform(0, kWidth), cy = rng.Uniform(0, kHeight), size = rng.Uniform(0.5, 12.0);
+    for (int v = 0; v < 3; ++v) {
+      mesh.clip.push_back(raster::testing::ScreenToClip(cx + rng.Uniform(-size, size), cy + rng.Uniform(-size, size),
+                                                        rng.Uniform(0.05, 0.95), kWidth, kHeight));
+      mesh.indices.push_back(static_cast<std::uint32_t>(mesh.indices.size()));
+    }
+  }
+  auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    raster::DepthStencilSurface depth({kWidth, kHeight, 8, 4}, raster::MakeBuiltinPattern("eqaa", 8));
+    raster::DrawState state;
+    state.cull = raster::CullMode::None;
+    const raster::RasterResult result = raster::Rasterize(mesh.Input(), state, depth);
+    EqaaSurface surface(kWidth, kHeight, {8, 4, 2}, PolicyByName("hraa"));
+    surface.TracePixels(std::vector<TracedPixel>{{10, 10}, {50, 40}});
+    const FragmentCounters counters = surface.UpdateAll(result, [](const raster::QuadFragment& q, int) {
+      return Colour{static_cast<float>(q.primitiveId % 7), 0, 0, 1};
+    });
+    std::vector<FmaskElement> fmask;
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = 0; x < kWidth; ++x) fmask.push_back(surface.Fmask(x, y));
+    }
+    return std::tuple{counters, fmask, surface.Trace().size()};
+  };
+  EXPECT_EQ(run(1), run(2));
 }
 
 }  // namespace
