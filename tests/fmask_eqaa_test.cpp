@@ -209,15 +209,7 @@ TEST(EqaaInvariants, RandomSoups) {
                                    EqaaConfig{8, 2, 2}, EqaaConfig{16, 8, 8}, EqaaConfig{16, 2, 1}}) {
     for (const std::string& policyName : PolicyNames()) {
       raster::testing::Random rng(static_cast<std::uint64_t>(config.coverageSamples * 100 + config.fragments));
-      raster::testing::Mesh mesh;
-      for (int t = 0; t < 120; ++t) {
-        const double cx = rng.Uniform(0, kWidth), cy = rng.Uniform(0, kHeight), size = rng.Uniform(0.5, 9.0);
-        for (int v = 0; v < 3; ++v) {
-          mesh.clip.push_back(raster::testing::ScreenToClip(cx + rng.Uniform(-size, size), cy + rng.Uniform(-size, size),
-                                                            rng.Uniform(0.05, 0.95), kWidth, kHeight));
-          mesh.indices.push_back(static_cast<std::uint32_t>(mesh.indices.size()));
-        }
-      }
+      const raster::testing::Mesh mesh = raster::testing::RandomSoup(rng, 120, kWidth, kHeight, 9.0);
       raster::DepthSurfaceConfig depthConfig{kWidth, kHeight, config.coverageSamples, config.depthSamples};
       depthConfig.maxZPlanes = 2;
       raster::DepthStencilSurface depth(depthConfig, raster::MakeBuiltinPattern("eqaa", config.coverageSamples));
@@ -270,15 +262,7 @@ TEST(EqaaInvariants, RandomSoups) {
 TEST(EqaaDeterminism, IdenticalForAnyThreadCount) {
   constexpr int kWidth = 96, kHeight = 64;
   raster::testing::Random rng(9);
-  raster::testing::Mesh mesh;
-  for (int t = 0; t < 800; ++t) {
-    const double cx = rng.Uniform(0, kWidth), cy = rng.Uniform(0, kHeight), size = rng.Uniform(0.5, 12.0);
-    for (int v = 0; v < 3; ++v) {
-      mesh.clip.push_back(raster::testing::ScreenToClip(cx + rng.Uniform(-size, size), cy + rng.Uniform(-size, size),
-                                                        rng.Uniform(0.05, 0.95), kWidth, kHeight));
-      mesh.indices.push_back(static_cast<std::uint32_t>(mesh.indices.size()));
-    }
-  }
+  const raster::testing::Mesh mesh = raster::testing::RandomSoup(rng, 800, kWidth, kHeight, 12.0);
   auto run = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     raster::DepthStencilSurface depth({kWidth, kHeight, 8, 4}, raster::MakeBuiltinPattern("eqaa", 8));

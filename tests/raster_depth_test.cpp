@@ -15,6 +15,7 @@ namespace raster {
 namespace {
 
 using testing::Mesh;
+using testing::RandomSoup;
 using testing::Random;
 using testing::ScreenToClip;
 
@@ -27,19 +28,6 @@ DepthStencilSurface MakeSurface(int width, int height, int samples, int depthSam
   config.depthSamples = depthSamples;
   config.maxZPlanes = maxZPlanes;
   return DepthStencilSurface(config, MakeBuiltinPattern(pattern, samples));
-}
-
-Mesh RandomSoup(Random& rng, int triangles, int width, int height, double maxSize) {
-  Mesh mesh;
-  for (int t = 0; t < triangles; ++t) {
-    const double size = rng.Uniform(0.5, maxSize);
-    const double cx = rng.Uniform(0, width), cy = rng.Uniform(0, height);
-    for (int v = 0; v < 3; ++v) {
-      mesh.clip.push_back(ScreenToClip(cx + rng.Uniform(-size, size), cy + rng.Uniform(-size, size), rng.Uniform(0.05, 0.95), width, height));
-      mesh.indices.push_back(static_cast<std::uint32_t>(mesh.indices.size()));
-    }
-  }
-  return mesh;
 }
 
 DrawState CullNone() {

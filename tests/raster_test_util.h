@@ -87,6 +87,20 @@ inline Mesh JitteredGrid(Random& rng, int cols, int rows, double x0, double y0, 
   return mesh;
 }
 
+// Triangles of random size up to maxSize px with random depth, scattered over the viewport.
+inline Mesh RandomSoup(Random& rng, int triangles, int width, int height, double maxSize) {
+  Mesh mesh;
+  for (int t = 0; t < triangles; ++t) {
+    const double size = rng.Uniform(0.5, maxSize);
+    const double cx = rng.Uniform(0, width), cy = rng.Uniform(0, height);
+    for (int v = 0; v < 3; ++v) {
+      mesh.clip.push_back(ScreenToClip(cx + rng.Uniform(-size, size), cy + rng.Uniform(-size, size), rng.Uniform(0.05, 0.95), width, height));
+      mesh.indices.push_back(static_cast<std::uint32_t>(mesh.indices.size()));
+    }
+  }
+  return mesh;
+}
+
 // Slow reference: every sample of every pixel in a triangle's bounds tested directly against
 // the edge functions, depth kept for all S samples (what an uncompressed, fully anchored
 // surface would hold). Per-sample coverage before and after the depth test is returned.
