@@ -66,6 +66,8 @@ ArbitrationPolicy PolicyByName(std::string_view name) {
     policy.zPlaneRescue = false;
   } else if (name == "per-quad") {
     policy.scope = ArbitrationScope::Quad;
+  } else if (name == "keep-on-reject") {
+    policy.discardWhenRejected = false;
   } else {
     std::string list;
     for (const std::string& n : PolicyNames()) list += (list.empty() ? "" : ", ") + n;
@@ -75,7 +77,8 @@ ArbitrationPolicy PolicyByName(std::string_view name) {
 }
 
 std::vector<std::string> PolicyNames() {
-  return {"hraa", "discard-first", "tie-keeps-higher", "count-before-incoming", "no-zplane-rescue", "per-quad"};
+  return {"hraa",     "discard-first", "tie-keeps-higher", "count-before-incoming", "no-zplane-rescue",
+          "per-quad", "keep-on-reject"};
 }
 
 void FragmentCounters::Merge(const FragmentCounters& other) {
@@ -294,7 +297,7 @@ void EqaaSurface::UpdatePixel(const raster::QuadFragment& quad, int quadPixel, c
     });
     if (c.untestable) note("untestable samples discarded: " + SampleList(c.untestable));
   };
-  if (policy_.order == DiscardOrder::DiscardThenEvict || c.claim == 0) discard();
+  if (policy_.order == DiscardOrder::DiscardThenEvict || (c.claim == 0 && policy_.discardWhenRejected)) discard();
 
   int slot = -1;
   if (c.claim != 0) {

@@ -49,11 +49,14 @@ struct ArbitrationPolicy {
   TieBreak tieBreak = TieBreak::KeepLowerIndex;
   CountBasis countBasis = CountBasis::AfterIncoming;
   bool zPlaneRescue = true;  // unanchored samples use the exact Z-plane test when available
+  // A fragment that claims no sample (hidden everywhere) still discards the untestable samples
+  // it covers: the talk's rule read literally. Off: only accepted fragments discard.
+  bool discardWhenRejected = true;
   ArbitrationScope scope = ArbitrationScope::Pixel;
 };
 
 // "hraa" (default), "discard-first", "tie-keeps-higher", "count-before-incoming",
-// "no-zplane-rescue", "per-quad". Throws std::invalid_argument listing them.
+// "no-zplane-rescue", "per-quad", "keep-on-reject". Throws std::invalid_argument listing them.
 ArbitrationPolicy PolicyByName(std::string_view name);
 std::vector<std::string> PolicyNames();
 

@@ -146,6 +146,20 @@ TEST(EqaaTalkExample, ZPlaneRescueKeepsTheAssociation) {
   }
 }
 
+// A fragment hidden at its anchor and at the nearest-anchor guess for s3 claims nothing; read
+// literally the talk still drops s3's association, keep-on-reject leaves it alone.
+TEST(EqaaTalkExample, RejectedFragmentDiscardsOnlyUnderTheLiteralReading) {
+  for (const char* name : {"hraa", "keep-on-reject"}) {
+    EqaaSurface surface = RunTalkExampleUpToGreen(PolicyByName(name));
+    FragmentCounters counters;
+    surface.Update(PixelFragment(kRed2Id, 0b1001, 0b0000, 0b0011), {kRed, kRed, kRed, kRed}, counters);
+    const bool literal = std::string(name) == "hraa";
+    EXPECT_EQ(Codes(surface), (std::vector<int>{0, 1, 0, literal ? U : 1})) << name;
+    EXPECT_EQ(counters.fragmentsRejected, 1u);
+    EXPECT_EQ(counters.samplesUnknownByUntestable, literal ? 1u : 0u);
+  }
+}
+
 // Per-quad arbitration picks one slot index from the quad's summed counts: pixel 0 (A: 3
 // samples, B: 2) and pixel 1 (A: 1, B: 4) then disagree with their own per-pixel choice.
 TEST(EqaaPolicies, PerQuadSharesOneVictimAcrossTheQuad) {
