@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/fixtures_command.h"
 #include "cli/raster_command.h"
 #include "cli/raster_options.h"
 
@@ -39,6 +40,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   cli::RasterCommandOptions rasterOptions;
   CLI::App* raster = cli::AddRasterCommand(app, rasterOptions);
+  cli::FixturesCommandOptions fixturesOptions;
+  CLI::App* fixtures = cli::AddFixturesCommand(app, fixturesOptions);
 
   try {
     app.parse(argc, argv);
@@ -46,15 +49,22 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
-    return ReportUsageError(raster->parsed() ? "aasim raster" : "aasim", error);
+    const char* command = raster->parsed()     ? "aasim raster"
+                          : fixtures->parsed() ? "aasim fixtures"
+                                               : "aasim";
+    return ReportUsageError(command, error);
   }
 
-  if (!raster->parsed()) {
+  if (!raster->parsed() && !fixtures->parsed()) {
     std::cout << app.help();
     return 0;
   }
   try {
-    cli::RunRasterCommand(rasterOptions, std::cout);
+    if (raster->parsed()) {
+      cli::RunRasterCommand(rasterOptions, std::cout);
+    } else {
+      cli::RunFixturesCommand(fixturesOptions, std::cout);
+    }
   } catch (const std::bad_alloc&) {
     std::cerr << "aasim: out of memory\n";
     return kExitRuntimeError;

@@ -59,9 +59,20 @@ OutputDir::OutputDir(std::filesystem::path dir) : dir_(std::move(dir)) {
 OutputDir::~OutputDir() { RemoveTemporaries(); }
 
 std::filesystem::path OutputDir::Stage(std::string_view fileName) {
+  const std::filesystem::path final = dir_ / fileName;
+  CreateFolders(final.parent_path());
   // Recorded before anything is written, so a writer that fails halfway is cleaned up too.
-  staged_.push_back({TemporaryName(dir_, fileName), dir_ / fileName});
+  staged_.push_back({TemporaryName(final.parent_path(), final.filename().string()), final});
   return staged_.back().temporary;
+}
+
+void OutputDir::CreateFolders(const std::filesystem::path& folder) {
+  std::error_code error;
+  if (folder == dir_ || std::filesystem::is_directory(folder, error)) return;
+  CreateFolders(folder.parent_path());
+  std::filesystem::create_directory(folder, error);
+  if (error) throw OutputError(Describe(folder, "cannot create directory", error.message()));
+  createdFolders_.push_back(folder);
 }
 
 std::vector<std::filesystem::path> OutputDir::Commit() {
@@ -79,6 +90,7 @@ std::vector<std::filesystem::path> OutputDir::Commit() {
     committed.push_back(file.final);
   }
   staged_.clear();
+  createdFolders_.clear();
   return committed;
 }
 
@@ -88,6 +100,13 @@ void OutputDir::RemoveTemporaries() noexcept {
     std::filesystem::remove(file.temporary, ignored);
   }
   staged_.clear();
+  // Newest first, so a folder is empty by the time it is removed; remove() leaves non-empty
+  // folders (someone else's files) alone.
+  for (auto folder = createdFolders_.rbegin(); folder != createdFolders_.rend(); ++folder) {
+    std::error_code ignored;
+    std::filesystem::remove(*folder, ignored);
+  }
+  createdFolders_.clear();
 }
 
 }  // namespace cli

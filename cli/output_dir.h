@@ -22,6 +22,8 @@ class OutputDir {
   const std::filesystem::path& Path() const { return dir_; }
 
   // The temporary path to write `fileName` to; it becomes Path() / fileName on Commit().
+  // `fileName` may name a subfolder ("a/b.bin"): missing folders are created now and removed
+  // again if the set is not committed.
   std::filesystem::path Stage(std::string_view fileName);
 
   // Renames every staged file into place and returns the final paths. If a rename fails, the
@@ -33,10 +35,12 @@ class OutputDir {
     std::filesystem::path temporary;
     std::filesystem::path final;
   };
+  void CreateFolders(const std::filesystem::path& folder);
   void RemoveTemporaries() noexcept;
 
   std::filesystem::path dir_;
   std::vector<StagedFile> staged_;
+  std::vector<std::filesystem::path> createdFolders_;  // in creation order
 };
 
 }  // namespace cli

@@ -89,8 +89,12 @@ void SummariseBin(const raster::RasterResult& result, std::size_t bin, PixelOwne
   }
 }
 
-// Wellons' "lowbias32" integer mixer: neighbouring ids get unrelated colours.
-std::uint32_t MixBits(std::uint32_t v) {
+}  // namespace
+
+// Wellons' "lowbias32" integer mixer. +1: the mixer maps 0 to 0, which would paint primitive 0
+// like the background.
+std::uint32_t PrimitiveHash(std::uint32_t primitiveId) {
+  std::uint32_t v = primitiveId + 1u;
   v ^= v >> 16;
   v *= 0x7feb352du;
   v ^= v >> 15;
@@ -98,8 +102,6 @@ std::uint32_t MixBits(std::uint32_t v) {
   v ^= v >> 16;
   return v;
 }
-
-}  // namespace
 
 std::size_t PixelOwnership::PixelsCovered() const {
   return static_cast<std::size_t>(
@@ -142,8 +144,7 @@ std::vector<std::uint8_t> PrimitiveImage(const PixelOwnership& ownership) {
   for (std::size_t pixel = 0; pixel < ownership.coverage.size(); ++pixel) {
     const int owners = ownership.ownerCount[pixel];
     if (owners == 0) continue;
-    // +1: the mixer maps 0 to 0, which would paint primitive 0 like the darkest grey.
-    const std::uint32_t hash = MixBits(ownership.majorityPrimitive[pixel] + 1u);
+    const std::uint32_t hash = PrimitiveHash(ownership.majorityPrimitive[pixel]);
     const float towardsGrey = static_cast<float>(owners - 1) / static_cast<float>(owners);
     for (int channel = 0; channel < 3; ++channel) {
       // Channels from 0.15 up keep every primitive visibly brighter than the background.

@@ -30,6 +30,9 @@ struct PixelOwnership {
 PixelOwnership ComputeOwnership(const raster::RasterResult& result, int width, int height,
                                 int samples);
 
+// A well-mixed hash of a primitive id, so neighbouring ids get unrelated preview colours.
+std::uint32_t PrimitiveHash(std::uint32_t primitiveId);
+
 // 8-bit grey, sRGB-encoded coverage fraction: white = covered, black = background.
 std::vector<std::uint8_t> CoverageImage(const PixelOwnership& ownership);
 // 8-bit RGB: a colour hashed from the majority primitive, pulled towards grey by the number of

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,11 +16,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/counters_json.h"
+#include "cli/eqaa_output.h"
+#include "cli/eqaa_trace.h"
 #include "cli/frame_input.h"
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
 #include "cli/output_error.h"
 #include "cli/ownership.h"
+#include "fmask/eqaa_surface.h"
 #include "raster/rasterizer.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
@@ -27,12 +31,25 @@
 namespace cli {
 namespace {
 
+// The colour block's part of a run (--fragments).
+struct EqaaRun {
+  fmask::EqaaSurface surface;
+  fmask::FragmentCounters counters;
+  double updateMs = 0.0;
+};
+
 struct RasterRun {
   raster::RasterResult result;
   PixelOwnership ownership;
   double rasterizeMs = 0.0;
   int threads = 0;
+  std::optional<EqaaRun> eqaa;
 };
+
+double MsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
 
 OutputDir OpenOutputDir(const std::string& out) {
   try {
@@ -99,8 +116,15 @@ nlohmann::ordered_json DerivedJson(const RasterCommandOptions& options, const Ra
   };
 }
 
+nlohmann::ordered_json EqaaJson(const RasterCommandOptions& options, const EqaaRun& eqaa) {
+  return {{"config", fmask::EqaaName(options.Eqaa())},
+          {"policy", options.policy},
+          {"init", options.fmaskInit},
+          {"counters", FragmentCountersJson(eqaa.counters)}};
+}
+
 nlohmann::ordered_json CountersDocument(const RasterCommandOptions& options, const RasterRun& run) {
-  return {
+  nlohmann::ordered_json document = {
       {"schema", "aasim.raster.counters"},
       {"version", 1},
       {"config",
@@ -117,8 +141,11 @@ nlohmann::ordered_json CountersDocument(const RasterCommandOptions& options, con
         {"threads", run.threads}}},
       {"counters", CountersJson(run.result.counters)},
       {"derived", DerivedJson(options, run)},
-      {"timing", {{"rasterize_ms", run.rasterizeMs}}},
   };
+  if (run.eqaa) document["eqaa"] = EqaaJson(options, *run.eqaa);
+  document["timing"] = {{"rasterize_ms", run.rasterizeMs}};
+  if (run.eqaa) document["timing"]["eqaa_ms"] = run.eqaa->updateMs;
+  return document;
 }
 
 void WriteJson(const std::filesystem::path& path, const nlohmann::ordered_json& json) {
@@ -126,6 +153,24 @@ void WriteJson(const std::filesystem::path& path, const nlohmann::ordered_json& 
   file << json.dump(2) << '\n';
   file.close();
   if (!file) throw OutputError(path.string() + ": cannot write JSON");
+}
+
+void WriteText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream file(path);
+  file << text;
+  file.close();
+  if (!file) throw OutputError(path.string() + ": cannot write text");
+}
+
+void WriteEqaaOutputs(OutputDir& dir, const RasterCommandOptions& options, const EqaaRun& eqaa) {
+  const EqaaPlanes planes = ReadEqaaPlanes(eqaa.surface);
+  WriteEqaaExr(dir.Stage("eqaa.exr"), planes);
+  WritePng(dir.Stage("resolve.png"), planes.width, planes.height, 3, ResolveImage(planes));
+  WritePng(dir.Stage("fmask.png"), planes.width, planes.height, 3, FmaskImage(planes));
+  if (!options.traced.empty()) {
+    WriteText(dir.Stage("trace.txt"), TraceText(options, eqaa.surface));
+    WriteJson(dir.Stage("trace.json"), TraceJson(options, eqaa.surface));
+  }
 }
 
 std::vector<std::filesystem::path> WriteOutputs(OutputDir& dir, const RasterCommandOptions& options,
@@ -136,6 +181,7 @@ std::vector<std::filesystem::path> WriteOutputs(OutputDir& dir, const RasterComm
   WritePng(dir.Stage("primitives.png"), options.width, options.height, 3,
            PrimitiveImage(run.ownership));
   WriteDepthExr(dir.Stage("depth.exr"), surface, run.ownership);
+  if (run.eqaa) WriteEqaaOutputs(dir, options, *run.eqaa);
   WriteJson(dir.Stage("counters.json"), CountersDocument(options, run));
   return dir.Commit();
 }
@@ -143,6 +189,26 @@ std::vector<std::filesystem::path> WriteOutputs(OutputDir& dir, const RasterComm
 std::string FormatMs(double ms) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.2f", ms);
+  return text;
+}
+
+// Fragment counts are only meaningful up to F, so the histogram stops there.
+void PrintEqaaSummary(std::ostream& out, const RasterCommandOptions& options, const EqaaRun& eqaa) {
+  const fmask::FragmentCounters& c = eqaa.counters;
+  out << "eqaa       " << fmask::EqaaName(options.Eqaa()) << ", policy " << options.policy
+      << ", FMASK init " << options.fmaskInit << ", " << c.pixelUpdates << " pixel updates\n"
+      << "fragments  per pixel after each update, 0..F:";
+  for (int k = 0; k <= options.fragments; ++k) {
+    out << (k == 0 ? " " : " / ") << c.fragmentsAfter[static_cast<std::size_t>(k)];
+  }
+  out << "; " << c.evictions << " evictions, " << c.fragmentsRejected << " rejected\n"
+      << "unknown    samples " << c.samplesUnknownByEviction << " by eviction, "
+      << c.samplesUnknownByUntestable << " untestable; " << c.zPlaneRescues << " z-plane rescues\n";
+}
+
+std::string FormatTime(const RasterRun& run) {
+  std::string text = FormatMs(run.rasterizeMs) + " ms rasterize";
+  if (run.eqaa) text += ", " + FormatMs(run.eqaa->updateMs) + " ms colour block";
   return text;
 }
 
@@ -161,12 +227,28 @@ void PrintSummary(std::ostream& out, const RasterCommandOptions& options, const 
       << c.quadsLive3 << " / " << c.quadsLive4 << "\n"
       << "samples    " << c.samplesCovered << " covered, " << c.samplesDepthPassed
       << " depth-passed\n"
-      << "z-planes   " << c.zPlaneDecompressions << " tile decompressions\n"
-      << "time       " << FormatMs(run.rasterizeMs) << " ms rasterize (" << run.threads
-      << " threads)\n"
+      << "z-planes   " << c.zPlaneDecompressions << " tile decompressions\n";
+  if (run.eqaa) PrintEqaaSummary(out, options, *run.eqaa);
+  out << "time       " << FormatTime(run) << " (" << run.threads << " threads)\n"
       << "wrote     ";
   for (const std::filesystem::path& path : written) out << ' ' << path.string();
   out << '\n';
+}
+
+// Feeds the quad stream, shaded with flat primitive colours, to a fresh EQAA surface.
+EqaaRun RunColourBlock(const RasterCommandOptions& options, const raster::RasterResult& result) {
+  EqaaRun eqaa{.surface = fmask::EqaaSurface(options.width, options.height, options.Eqaa(),
+                                             fmask::PolicyByName(options.policy),
+                                             FmaskInitByName(options.fmaskInit), kClearColour),
+               .counters = {},
+               .updateMs = 0.0};
+  eqaa.surface.TracePixels(options.traced);
+  const auto start = std::chrono::steady_clock::now();
+  eqaa.counters = eqaa.surface.UpdateAll(result, [](const raster::QuadFragment& quad, int) {
+    return PrimitiveColour(quad.primitiveId);
+  });
+  eqaa.updateMs = MsSince(start);
+  return eqaa;
 }
 
 }  // namespace
@@ -192,8 +274,8 @@ void RunRasterCommand(const RasterCommandOptions& options, std::ostream& summary
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   const auto start = std::chrono::steady_clock::now();
   run.result = raster::Rasterize(clip.DrawInput(), MakeDrawState(options), surface);
-  run.rasterizeMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  run.rasterizeMs = MsSince(start);
+  if (options.fragments > 0) run.eqaa = RunColourBlock(options, run.result);
   run.ownership = ComputeOwnership(run.result, options.width, options.height, options.samples);
 
   PrintSummary(summary, options, run, WriteOutputs(dir, options, surface, run));

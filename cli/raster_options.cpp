@@ -3,6 +3,7 @@
 #include "cli/raster_options.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <iterator>
 #include <stdexcept>
@@ -37,6 +38,16 @@ constexpr NamedCompareFunc kDepthFuncs[] = {
     {"greater", raster::CompareFunc::Greater}, {"gequal", raster::CompareFunc::GreaterEqual},
     {"equal", raster::CompareFunc::Equal},     {"notequal", raster::CompareFunc::NotEqual},
     {"always", raster::CompareFunc::Always},   {"never", raster::CompareFunc::Never},
+};
+
+struct NamedInitialState {
+  std::string_view name;
+  fmask::InitialState state;
+};
+constexpr NamedInitialState kFmaskInits[] = {
+    {"cleared", fmask::InitialState::Cleared},
+    {"expanded", fmask::InitialState::Expanded},
+    {"unknown", fmask::InitialState::Unknown},
 };
 
 template <typename Table>
@@ -116,9 +127,98 @@ void AddRunOptions(CLI::App& command, RasterCommandOptions& options) {
   command
       .add_option("--out", options.out,
                   "Output directory for coverage.png, primitives.png, depth.exr, counters.json "
-                  "(created if missing)")
+                  "and, with --fragments, eqaa.exr, resolve.png, fmask.png, trace.txt, "
+                  "trace.json (created if missing)")
       ->type_name("DIR")
       ->capture_default_str();
+}
+
+// The colour block's options mean nothing without it, so each one needs --fragments.
+void AddEqaaOptions(CLI::App& command, RasterCommandOptions& options) {
+  CLI::Option* fragments =
+      command
+          .add_option("--fragments", options.fragments,
+                      "Colour fragments per pixel F: also render into an EQAA surface "
+                      "(S/Z/F must be a legal EQAA mode) and write its outputs [default: off]")
+          ->check(CLI::IsMember({1, 2, 4, 8}));
+  command
+      .add_option("--policy", options.policy,
+                  "Fragment arbitration policy when all F slots are taken (docs/eqaa.md)")
+      ->check(CLI::IsMember(fmask::PolicyNames()))
+      ->needs(fragments)
+      ->capture_default_str();
+  command.add_option("--fmask-init", options.fmaskInit, "FMASK contents before the first draw")
+      ->check(CLI::IsMember(Names(kFmaskInits)))
+      ->needs(fragments)
+      ->capture_default_str();
+  command
+      .add_option("--trace", options.trace,
+                  "Record every colour-block update of pixel X,Y in trace.txt and trace.json "
+                  "(repeatable)")
+      ->type_name("X,Y")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->needs(fragments);
+}
+
+std::string SizeOptions(const RasterCommandOptions& options) {
+  std::string text = "--width " + std::to_string(options.width) + " --height " +
+                     std::to_string(options.height) + " --samples " +
+                     std::to_string(options.samples) + " --depth-samples " +
+                     std::to_string(options.depthSamples);
+  if (options.fragments > 0) text += " --fragments " + std::to_string(options.fragments);
+  return text;
+}
+
+void CheckMemory(const RasterCommandOptions& options) {
+  const std::uint64_t bytes = EstimateRasterBytes(options.width, options.height, options.samples,
+                                                  options.depthSamples, options.fragments);
+  if (bytes > kMaxRasterBytes) {
+    throw CLI::ValidationError(
+        SizeOptions(options) + ": needs about " + FormatGiB(bytes) + " GiB (" +
+        (options.fragments > 0 ? "depth and EQAA surfaces" : "depth surface") +
+        ", quads and images), over the " + FormatGiB(kMaxRasterBytes) + " GiB limit");
+  }
+}
+
+// All of `text` as a decimal integer.
+bool ParseWholeInt(std::string_view text, int& value) {
+  const char* end = text.data() + text.size();
+  const auto [parsedEnd, error] = std::from_chars(text.data(), end, value);
+  return error == std::errc() && parsedEnd == end;
+}
+
+// "X,Y" with both integers inside the viewport.
+fmask::TracedPixel ParseTracedPixel(const std::string& text, int width, int height) {
+  fmask::TracedPixel pixel;
+  const std::string_view view(text);
+  const std::size_t comma = view.find(',');
+  if (comma == std::string_view::npos || !ParseWholeInt(view.substr(0, comma), pixel.x) ||
+      !ParseWholeInt(view.substr(comma + 1), pixel.y)) {
+    throw CLI::ValidationError("--trace " + text + ": expected X,Y (integer pixel coordinates)");
+  }
+  if (pixel.x < 0 || pixel.x >= width || pixel.y < 0 || pixel.y >= height) {
+    throw CLI::ValidationError("--trace " + text + ": outside the " + std::to_string(width) + "x" +
+                               std::to_string(height) + " viewport");
+  }
+  return pixel;
+}
+
+void ResolveEqaaOptions(RasterCommandOptions& options) {
+  try {
+    fmask::ValidateEqaaConfig(options.Eqaa());
+  } catch (const std::invalid_argument& error) {
+    throw CLI::ValidationError(error.what());
+  }
+  // MSAA layouts (F == S) have no UNKNOWN code to start from.
+  if (FmaskInitByName(options.fmaskInit) == fmask::InitialState::Unknown &&
+      !fmask::FmaskLayout::For(options.samples, options.fragments).IsEqaa()) {
+    throw CLI::ValidationError("--fmask-init unknown needs F < S: " +
+                               fmask::EqaaName(options.Eqaa()) + " has no UNKNOWN code");
+  }
+  options.traced.clear();
+  for (const std::string& text : options.trace) {
+    options.traced.push_back(ParseTracedPixel(text, options.width, options.height));
+  }
 }
 
 }  // namespace
@@ -126,24 +226,35 @@ void AddRunOptions(CLI::App& command, RasterCommandOptions& options) {
 CLI::App* AddRasterCommand(CLI::App& app, RasterCommandOptions& options) {
   CLI::App* command = app.add_subcommand(
       "raster",
-      "Rasterize a scene into an EQAA depth surface; write coverage and depth images "
-      "and counters");
+      "Rasterize a scene into an EQAA depth surface (and, with --fragments, its colour "
+      "fragments and FMASK); write images and counters");
   // Scripts append overrides to a base command line, so a repeated option means its last value.
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   AddSceneOptions(*command, options);
   AddSurfaceOptions(*command, options);
   AddStateOptions(*command, options);
   AddRunOptions(*command, options);
+  AddEqaaOptions(*command, options);
   return command;
 }
 
-std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthSamples) {
+std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthSamples,
+                                  int fragments) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
   const std::uint64_t surface = samples + 4u * depthSamples + 1u;
   const std::uint64_t quads = sizeof(raster::QuadFragment) / raster::kQuadPixels;
   const std::uint64_t ownership = sizeof(float) + sizeof(std::uint32_t) + 1u;
   const std::uint64_t images = 4u * (depthSamples + 2u) + 4u;  // EXR channels, two PNGs
-  return pixels * (surface + quads + ownership + images);
+  std::uint64_t perPixel = surface + quads + ownership + images;
+  if (fragments > 0) {
+    const std::uint64_t eqaa = sizeof(fmask::FmaskElement) +
+                               std::uint64_t(fragments) * sizeof(fmask::FragmentSlot) +
+                               std::uint64_t(samples) * sizeof(fmask::UnknownCause);
+    // eqaa.exr: RGBA, S codes, fragments, unknown; resolve.png and fmask.png are RGB.
+    const std::uint64_t eqaaImages = 4u * (samples + 6u) + 6u;
+    perPixel += eqaa + eqaaImages;
+  }
+  return pixels * perPixel;
 }
 
 void ResolveRasterOptions(RasterCommandOptions& options) {
@@ -155,16 +266,8 @@ void ResolveRasterOptions(RasterCommandOptions& options) {
                                " exceeds --samples " + std::to_string(options.samples) +
                                ": need S >= Z");
   }
-  const std::uint64_t bytes =
-      EstimateRasterBytes(options.width, options.height, options.samples, options.depthSamples);
-  if (bytes > kMaxRasterBytes) {
-    throw CLI::ValidationError(
-        "--width " + std::to_string(options.width) + " --height " + std::to_string(options.height) +
-        " --samples " + std::to_string(options.samples) + " --depth-samples " +
-        std::to_string(options.depthSamples) + ": needs about " + FormatGiB(bytes) +
-        " GiB (depth surface, quads and images), over the " + FormatGiB(kMaxRasterBytes) +
-        " GiB limit");
-  }
+  if (options.fragments > 0) ResolveEqaaOptions(options);
+  CheckMemory(options);
 }
 
 raster::CullMode CullModeByName(std::string_view name) {
@@ -180,6 +283,14 @@ raster::CompareFunc DepthFuncByName(std::string_view name) {
                    [&](const NamedCompareFunc& entry) { return entry.name == name; });
   if (found == std::end(kDepthFuncs)) throw std::invalid_argument("unknown depth function");
   return found->func;
+}
+
+fmask::InitialState FmaskInitByName(std::string_view name) {
+  const auto* found =
+      std::find_if(std::begin(kFmaskInits), std::end(kFmaskInits),
+                   [&](const NamedInitialState& entry) { return entry.name == name; });
+  if (found == std::end(kFmaskInits)) throw std::invalid_argument("unknown FMASK initial state");
+  return found->state;
 }
 
 }  // namespace cli

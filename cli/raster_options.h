@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "fmask/eqaa_surface.h"
 #include "raster/depth_stencil.h"
 #include "raster/setup.h"
 
@@ -27,6 +29,14 @@ struct RasterCommandOptions {
   bool noHiZ = false;
   int threads = 0;  // default set by AddRasterCommand: every core
   std::string out = "out/raster";
+  // The colour block runs when fragments > 0 (--fragments); the rest only matter then.
+  int fragments = 0;
+  std::string policy = "hraa";
+  std::string fmaskInit = "cleared";
+  std::vector<std::string> trace;          // "X,Y" as given
+  std::vector<fmask::TracedPixel> traced;  // parsed from `trace` by ResolveRasterOptions
+
+  fmask::EqaaConfig Eqaa() const { return {samples, depthSamples, fragments}; }
 };
 
 // Refuse runs whose buffers would exceed this (see EstimateRasterBytes).
@@ -39,10 +49,13 @@ CLI::App* AddRasterCommand(CLI::App& app, RasterCommandOptions& options);
 void ResolveRasterOptions(RasterCommandOptions& options);
 
 // Bytes held at once: the depth surface (S plane indices, Z float anchors and a stencil byte
-// per pixel), one layer of quads, the ownership buffers and the output images.
-std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthSamples);
+// per pixel), one layer of quads, the ownership buffers and the output images; with
+// fragments > 0 also the EQAA surface (FMASK element, F slots, S causes) and its images.
+std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthSamples,
+                                  int fragments);
 
 raster::CullMode CullModeByName(std::string_view name);
 raster::CompareFunc DepthFuncByName(std::string_view name);
+fmask::InitialState FmaskInitByName(std::string_view name);
 
 }  // namespace cli

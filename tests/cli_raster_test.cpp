@@ -1,6 +1,7 @@
-// `aasim raster` end to end: the real binary writes its four outputs on good input, and every
-// bad input gives a non-zero exit, one stderr line naming the input and no output files. Also
-// the in-process pieces the outputs are built from (sample ownership replay).
+// `aasim raster` end to end: the real binary writes its four outputs on good input (and the
+// EQAA outputs with --fragments), and every bad input gives a non-zero exit, one stderr line
+// naming the input and no output files. Also the in-process pieces the outputs are built from
+// (sample ownership replay, primitive colours, the FMASK preview, the trace formats).
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -15,6 +17,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -23,12 +26,19 @@
 #include <vector>
 
 #include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
+#include "cli/counters_json.h"
+#include "cli/eqaa_output.h"
+#include "cli/eqaa_trace.h"
+#include "cli/image_io.h"
 #include "cli/ownership.h"
+#include "cli/raster_options.h"
+#include "fmask/eqaa_surface.h"
 #include "raster/counters.h"
 #include "raster/rasterizer.h"
 
@@ -181,6 +191,25 @@ std::vector<std::string> ExrChannelNames(const fs::path& path) {
   return names;
 }
 
+// Every channel of an EXR file, by name.
+std::map<std::string, std::vector<float>> ReadExrChannels(const fs::path& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  const std::size_t width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
+  const std::size_t height = static_cast<std::size_t>(window.max.y - window.min.y + 1);
+  std::map<std::string, std::vector<float>> channels;
+  Imf::FrameBuffer frameBuffer;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+    std::vector<float>& values = channels[it.name()];
+    values.resize(width * height);
+    frameBuffer.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()),
+                                             sizeof(float), sizeof(float) * width));
+  }
+  file.setFrameBuffer(frameBuffer);
+  file.readPixels(window.min.y, window.max.y);
+  return channels;
+}
+
 TEST_F(CliRasterTest, WritesTheFourOutputsAndCountersMatchTheFieldTable) {
   const fs::path out = scratch_ / "out";
   const CommandResult run = RunAasim(SmallRun(out), scratch_);
@@ -255,7 +284,8 @@ TEST_F(CliRasterTest, HelpExplainsEveryOption) {
   EXPECT_EQ(run.err, "");
   for (const char* option :
        {"--scene", "--width", "--height", "--samples", "--depth-samples", "--pattern",
-        "--max-zplanes", "--cull", "--depth-func", "--no-hiz", "--threads", "--out"}) {
+        "--max-zplanes", "--cull", "--depth-func", "--no-hiz", "--threads", "--out", "--fragments",
+        "--policy", "--fmask-init", "--trace"}) {
     EXPECT_NE(run.out.find(option), std::string::npos) << option;
   }
   EXPECT_NE(run.out.find("[1 - 16384]=1920"), std::string::npos) << run.out;
@@ -265,6 +295,152 @@ TEST_F(CliRasterTest, NoArgumentsPrintsHelpAndSucceeds) {
   const CommandResult run = RunAasim({}, scratch_);
   EXPECT_EQ(run.exitCode, 0);
   EXPECT_NE(run.out.find("raster"), std::string::npos) << run.out;
+}
+
+// --- The colour block (--fragments): one run per EQAA mode of the issue. ---
+
+struct EqaaMode {
+  std::string name;
+  int samples, depthSamples, fragments;
+};
+
+void PrintTo(const EqaaMode& mode, std::ostream* os) { *os << mode.name; }
+
+std::vector<std::string> EqaaRun(const EqaaMode& mode, const fs::path& out) {
+  return {"raster",
+          "--scene",
+          "builtin:default",
+          "--width",
+          "96",
+          "--height",
+          "64",
+          "--samples",
+          std::to_string(mode.samples),
+          "--depth-samples",
+          std::to_string(mode.depthSamples),
+          "--fragments",
+          std::to_string(mode.fragments),
+          "--out",
+          out.string()};
+}
+
+std::vector<std::string> FragmentCounterNames() {
+  std::vector<std::string> names;
+  fmask::FragmentCounters{}.ForEach(
+      [&](const char* name, std::uint64_t) { names.emplace_back(name); });
+  return names;
+}
+
+class CliRasterEqaaTest : public CliRasterTest, public ::testing::WithParamInterface<EqaaMode> {};
+
+TEST_P(CliRasterEqaaTest, WritesTheEqaaOutputsAndCounters) {
+  const EqaaMode& mode = GetParam();
+  const fs::path out = scratch_ / "out";
+  const CommandResult run = RunAasim(EqaaRun(mode, out), scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  const std::string config = std::to_string(mode.samples) + "S/" +
+                             std::to_string(mode.depthSamples) + "Z/" +
+                             std::to_string(mode.fragments) + "F";
+  EXPECT_NE(run.out.find("eqaa       " + config + ", policy hraa"), std::string::npos) << run.out;
+  EXPECT_EQ(FilesIn(out),
+            (std::vector<std::string>{"counters.json", "coverage.png", "depth.exr", "eqaa.exr",
+                                      "fmask.png", "primitives.png", "resolve.png"}));
+
+  const nlohmann::ordered_json json =
+      nlohmann::ordered_json::parse(ReadText(out / "counters.json"));
+  const nlohmann::ordered_json& eqaa = json["eqaa"];
+  EXPECT_EQ(eqaa["config"], config);
+  EXPECT_EQ(eqaa["policy"], "hraa");
+  EXPECT_EQ(eqaa["init"], "cleared");
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : eqaa["counters"].items()) {
+    keys.push_back(key);
+    EXPECT_TRUE(value.is_number_unsigned()) << key;
+  }
+  EXPECT_EQ(keys, FragmentCounterNames());
+  EXPECT_GT(eqaa["counters"]["pixels/updates"].get<std::uint64_t>(), 0u);
+
+  for (const char* png : {"resolve.png", "fmask.png"}) {
+    int width = 0, height = 0, channels = 0;
+    ASSERT_TRUE(stbi_info((out / png).c_str(), &width, &height, &channels)) << png;
+    EXPECT_EQ(width, 96) << png;
+    EXPECT_EQ(height, 64) << png;
+    EXPECT_EQ(channels, 3) << png;
+  }
+
+  // OpenEXR lists channels sorted by name (fmask.s10 before fmask.s2).
+  const std::map<std::string, std::vector<float>> exr = ReadExrChannels(out / "eqaa.exr");
+  std::vector<std::string> expected{"A", "B", "G", "R", "fragments", "unknown"};
+  for (int s = 0; s < mode.samples; ++s) expected.push_back("fmask.s" + std::to_string(s));
+  std::sort(expected.begin(), expected.end());
+  std::vector<std::string> names;
+  for (const auto& [name, values] : exr) names.push_back(name);
+  ASSERT_EQ(names, expected);
+
+  // Per pixel: codes are integers naming a slot or UNKNOWN (= F; 0 or 1 for 1F), `unknown`
+  // counts the UNKNOWN codes, and no pixel holds more than F fragments.
+  const float unknownCode = static_cast<float>(mode.fragments);
+  for (std::size_t pixel = 0; pixel < exr.at("unknown").size(); ++pixel) {
+    int unknown = 0;
+    for (int s = 0; s < mode.samples; ++s) {
+      const float code = exr.at("fmask.s" + std::to_string(s))[pixel];
+      ASSERT_EQ(code, std::floor(code)) << pixel;
+      ASSERT_GE(code, 0.0f) << pixel;
+      ASSERT_LE(code, unknownCode) << pixel;
+      unknown += code == unknownCode;
+    }
+    ASSERT_EQ(exr.at("unknown")[pixel], static_cast<float>(unknown)) << pixel;
+    ASSERT_GE(exr.at("fragments")[pixel], 0.0f) << pixel;
+    ASSERT_LE(exr.at("fragments")[pixel], unknownCode) << pixel;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(CliEqaaModes, CliRasterEqaaTest,
+                         ::testing::Values(EqaaMode{"8S8Z1F", 8, 8, 1}, EqaaMode{"8S4Z2F", 8, 4, 2},
+                                           EqaaMode{"16S8Z4F", 16, 8, 4}),
+                         [](const auto& param) { return param.param.name; });
+
+TEST_F(CliRasterTest, TraceRecordsEveryUpdateOfTheTracedPixel) {
+  const fs::path out = scratch_ / "out";
+  std::vector<std::string> args = EqaaRun({"8S4Z2F", 8, 4, 2}, out);
+  args.insert(args.end(), {"--trace", "48,32"});
+  const CommandResult run = RunAasim(args, scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json trace = nlohmann::json::parse(ReadText(out / "trace.json"));
+  EXPECT_EQ(trace["schema"], "aasim.raster.trace");
+  EXPECT_EQ(trace["eqaa"], "8S/4Z/2F");
+  EXPECT_EQ(trace["fmask_format"], "FMASK16_S8_F2");
+  EXPECT_EQ(trace["traced"], nlohmann::json::parse("[[48, 32]]"));
+  // The centre of the default scene is drawn at least once.
+  ASSERT_FALSE(trace["events"].empty());
+  for (const nlohmann::json& event : trace["events"]) {
+    EXPECT_EQ(event["pixel"], nlohmann::json::parse("[48, 32]"));
+    EXPECT_EQ(event["codes_before"].size(), 8u);
+    EXPECT_EQ(event["codes_after"].size(), 8u);
+    EXPECT_EQ(event["causes_after"].size(), 8u);
+    EXPECT_EQ(event["slots_after"].size(), 2u);
+    EXPECT_EQ(event["fmask_after"].get<std::string>().size(), 2u + 16u / 4u);
+    EXPECT_FALSE(event["steps"].empty());
+  }
+  EXPECT_NE(ReadText(out / "trace.txt").find("event 0: pixel (48, 32)"), std::string::npos);
+}
+
+TEST_F(CliRasterTest, EqaaOutputsAreIdenticalWithOneAndTwoThreads) {
+  const EqaaMode mode{"8S4Z2F", 8, 4, 2};
+  std::vector<std::string> one = EqaaRun(mode, scratch_ / "one"),
+                           two = EqaaRun(mode, scratch_ / "two");
+  one.insert(one.end(), {"--threads", "1", "--trace", "48,32", "--trace", "20,40"});
+  two.insert(two.end(), {"--threads", "2", "--trace", "48,32", "--trace", "20,40"});
+  ASSERT_EQ(RunAasim(one, scratch_).exitCode, 0);
+  ASSERT_EQ(RunAasim(two, scratch_).exitCode, 0);
+  for (const char* file : {"eqaa.exr", "resolve.png", "fmask.png", "trace.json", "trace.txt"}) {
+    EXPECT_EQ(ReadText(scratch_ / "one" / file), ReadText(scratch_ / "two" / file)) << file;
+  }
+  const auto counters = [&](const char* dir) {
+    return nlohmann::json::parse(ReadText(scratch_ / dir / "counters.json"))["eqaa"];
+  };
+  EXPECT_EQ(counters("one"), counters("two"));
 }
 
 // --- Every bad input: exit code, one stderr line naming the input, no output files. ---
@@ -327,6 +503,25 @@ std::vector<BadInput> BadInputs() {
        },
        "index.gltf", "out of range", 1},
       {"UnknownBuiltinScene", fixed({"--scene", "builtin:nosuch"}), "builtin:nosuch", "unknown", 1},
+      {"FragmentsNotAPowerOfTwo", fixed({"--fragments", "3"}), "--fragments",
+       "not in {1,2,4,8}", 2},
+      {"EqaaModeIllegal", fixed({"--samples", "4", "--fragments", "8"}), "4S/4Z/8F", "8S/4Z/2F",
+       2},
+      {"UnknownInitWithoutUnknownCode",
+       fixed({"--samples", "4", "--fragments", "4", "--fmask-init", "unknown"}),
+       "--fmask-init unknown", "F < S", 2},
+      {"UnknownPolicy", fixed({"--fragments", "2", "--policy", "nosuch"}), "--policy",
+       "nosuch not in", 2},
+      {"PolicyWithoutFragments", fixed({"--policy", "hraa"}), "--policy", "requires --fragments",
+       2},
+      {"TraceWithoutFragments", fixed({"--trace", "5,5"}), "--trace", "requires --fragments", 2},
+      {"TraceOutsideViewport", fixed({"--fragments", "2", "--trace", "5000,5"}), "--trace 5000,5",
+       "outside the 64x48 viewport", 2},
+      {"TraceNotAPixel", fixed({"--fragments", "2", "--trace", "5;5"}), "--trace 5;5",
+       "expected X,Y", 2},
+      {"EqaaSurfaceOverMemoryLimit",
+       fixed({"--width", "4096", "--height", "4096", "--samples", "16", "--fragments", "4"}),
+       "--fragments 4", "4.0 GiB limit", 2},
       {"OutUnderARegularFile",
        [](const fs::path& scratch) -> std::vector<std::string> {
          WriteFile(scratch / "somefile", "x");
@@ -408,6 +603,97 @@ TEST(CliOwnership, LastPassingWriterOwnsEachSample) {
 TEST(CliOwnership, QuadOutsideItsBinIsReported) {
   const raster::RasterResult result = OneBin({Quad(40, 0, 1, {{0, 0}})});
   EXPECT_THROW(cli::ComputeOwnership(result, 32, 32, 1), std::logic_error);
+}
+
+// --- EQAA outputs (cli/eqaa_output.h, cli/eqaa_trace.h). ---
+
+TEST(CliEqaaOutput, PrimitiveColoursAreSaturatedOpaqueAndDiffer) {
+  for (std::uint32_t id = 0; id < 64; ++id) {
+    const fmask::Colour c = cli::PrimitiveColour(id);
+    EXPECT_EQ(std::max({c.r, c.g, c.b}), 1.0f) << id;
+    EXPECT_EQ(std::min({c.r, c.g, c.b}), 0.0f) << id;
+    EXPECT_EQ(c.a, 1.0f) << id;
+    EXPECT_NE(c, cli::PrimitiveColour(id + 1)) << id;
+  }
+}
+
+TEST(CliEqaaOutput, FmaskPreviewBrightensWithUnknownAndTintsByFragments) {
+  // S = 4; pixels: 1 fragment none unknown, 2 fragments none unknown, 0 fragments all unknown.
+  cli::EqaaPlanes planes;
+  planes.width = 3;
+  planes.height = 1;
+  planes.samples = 4;
+  planes.fragments = {1.0f, 2.0f, 0.0f};
+  planes.unknown = {0.0f, 0.0f, 4.0f};
+  const std::vector<std::uint8_t> image = cli::FmaskImage(planes);
+  const std::uint8_t grey = cli::EncodeSrgb8(0.25f);
+  EXPECT_EQ(std::vector<std::uint8_t>(image.begin(), image.begin() + 3),
+            (std::vector<std::uint8_t>{grey, grey, grey}));
+  EXPECT_LT(image[3], image[5]);  // two fragments: blue
+  EXPECT_EQ(std::vector<std::uint8_t>(image.begin() + 6, image.end()),
+            (std::vector<std::uint8_t>{255, 255, 255}));
+}
+
+TEST(CliEqaaOutput, EqaaSurfaceCountsInTheMemoryEstimate) {
+  const std::uint64_t pixels = 64 * 48;
+  const std::uint64_t without = cli::EstimateRasterBytes(64, 48, 8, 4, 0);
+  const std::uint64_t with = cli::EstimateRasterBytes(64, 48, 8, 4, 2);
+  // FMASK element, F slots and S causes per pixel at least.
+  EXPECT_GE(with - without, pixels * (8 + 2 * 24 + 8));
+}
+
+TEST(CliEqaaOutput, CounterJsonHasEveryCounterInForEachOrder) {
+  fmask::FragmentCounters counters;
+  counters.evictions = 7;
+  const nlohmann::ordered_json json = cli::FragmentCountersJson(counters);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : json.items()) keys.push_back(key);
+  EXPECT_EQ(keys, FragmentCounterNames());
+  EXPECT_EQ(json["fragments/evictions"], 7);
+}
+
+TEST(CliEqaaTrace, JsonAndTextCarryEveryEventField) {
+  cli::RasterCommandOptions options;
+  options.samples = 8;
+  options.depthSamples = 4;
+  options.fragments = 2;
+  options.traced = {{1, 0}};
+  fmask::EqaaSurface surface(2, 2, options.Eqaa(), fmask::PolicyByName("hraa"),
+                             fmask::InitialState::Cleared, cli::kClearColour);
+  surface.TracePixels(options.traced);
+  raster::QuadFragment quad = Quad(0, 0, 5, {{1, 0}, {1, 1}, {1, 2}, {1, 3}});
+  quad.depthExact = quad.passed;
+  fmask::FragmentCounters counters;
+  const fmask::Colour red{1.0f, 0.0f, 0.0f, 1.0f};
+  surface.Update(quad, {red, red, red, red}, counters);
+  ASSERT_EQ(surface.Trace().size(), 1u);
+
+  const nlohmann::ordered_json json = cli::TraceJson(options, surface);
+  EXPECT_EQ(json["eqaa"], "8S/4Z/2F");
+  EXPECT_EQ(json["unknown_code"], 2);
+  ASSERT_EQ(json["events"].size(), 1u);
+  const nlohmann::ordered_json& event = json["events"][0];
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : event.items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"pixel", "primitive", "colour", "covered", "passed",
+                                            "exact", "slots_before", "fmask_before",
+                                            "codes_before", "victim", "slot", "slots_after",
+                                            "fmask_after", "codes_after", "causes_after",
+                                            "steps"}));
+  EXPECT_EQ(event["pixel"], nlohmann::ordered_json::parse("[1, 0]"));
+  EXPECT_EQ(event["primitive"], 5);
+  EXPECT_EQ(event["covered"], nlohmann::ordered_json::parse("[0, 1, 2, 3]"));
+  EXPECT_EQ(event["fmask_before"], "0x0000");  // FMASK16_S8_F2: 4 hex digits, cleared
+  EXPECT_EQ(event["codes_before"], nlohmann::ordered_json::parse("[0, 0, 0, 0, 0, 0, 0, 0]"));
+  EXPECT_EQ(event["slots_before"][0]["primitive"], nullptr);  // the clear colour
+  EXPECT_EQ(event["slots_before"][0]["colour"], nlohmann::ordered_json::parse("[0, 0, 0, 1]"));
+  EXPECT_EQ(event["causes_after"].size(), 8u);
+
+  const std::string text = cli::TraceText(options, surface);
+  EXPECT_NE(text.find("FMASK16_S8_F2"), std::string::npos) << text;
+  EXPECT_NE(text.find("event 0: pixel (1, 0), primitive 5"), std::string::npos) << text;
+  EXPECT_NE(text.find("samples covered 0,1,2,3"), std::string::npos) << text;
+  EXPECT_NE(text.find("before fmask 0x0000  codes 0 0 0 0 0 0 0 0"), std::string::npos) << text;
 }
 
 }  // namespace

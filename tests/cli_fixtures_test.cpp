@@ -1,0 +1,256 @@
+// `aasim fixtures` end to end: the real binary writes a set that verifies, an outside reader
+// decodes it from manifest.json alone, and any corruption (a flipped byte, a missing file, a
+// wrong checksum or schema) makes --verify exit 1 with one line naming the fixture and file.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/output_dir.h"
+#include "fmask/fixtures.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Bytes = std::vector<std::uint8_t>;
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+Bytes ReadFile(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return Bytes(std::istreambuf_iterator<char>(file), {});
+}
+
+std::string ReadText(const fs::path& path) {
+  const Bytes bytes = ReadFile(path);
+  return std::string(bytes.begin(), bytes.end());
+}
+
+void WriteFile(const fs::path& path, const Bytes& bytes) {
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+}
+
+// Appended piecewise: GCC 12 flags `" " + string` with a false -Wrestrict.
+void AppendQuoted(std::string& command, std::string_view prefix, const std::string& arg) {
+  command += prefix;
+  command += '\'';
+  command += arg;
+  command += '\'';
+}
+
+class CliFixtures : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("aasim-cli-fixtures-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CommandResult Run(const std::vector<std::string>& args) const {
+    std::string command;
+    AppendQuoted(command, "", AASIM_BINARY);
+    for (const std::string& arg : args) AppendQuoted(command, " ", arg);
+    AppendQuoted(command, " >", (dir_ / "stdout.txt").string());
+    AppendQuoted(command, " 2>", (dir_ / "stderr.txt").string());
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadText(dir_ / "stdout.txt"),
+            ReadText(dir_ / "stderr.txt")};
+  }
+
+  fs::path WriteSet() const {
+    const fs::path set = dir_ / "set";
+    const CommandResult result = Run({"fixtures", "--out", set.string()});
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.out.find("wrote " + std::to_string(fmask::CanonicalFixtureSet().size()) +
+                              " fixtures"),
+              std::string::npos)
+        << result.out;
+    return set;
+  }
+
+  // --verify must fail with exit 1 and one stderr line containing every `needle`.
+  void ExpectVerifyFails(const fs::path& set, const std::vector<std::string>& needles) const {
+    const CommandResult result = Run({"fixtures", "--verify", set.string()});
+    EXPECT_EQ(result.exitCode, 1) << result.out;
+    EXPECT_EQ(result.err.rfind("aasim: ", 0), 0u) << result.err;
+    EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << result.err;
+    for (const std::string& needle : needles) {
+      EXPECT_NE(result.err.find(needle), std::string::npos)
+          << "no '" << needle << "' in " << result.err;
+    }
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(CliFixtures, WrittenSetVerifies) {
+  const fs::path set = WriteSet();
+  const CommandResult result = Run({"fixtures", "--verify", set.string()});
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "verified " + std::to_string(fmask::CanonicalFixtureSet().size()) + " fixtures\n");
+  EXPECT_TRUE(result.err.empty()) << result.err;
+  for (const auto& entry : fs::recursive_directory_iterator(set)) {
+    EXPECT_EQ(entry.path().filename().string().find(".aasim-tmp-"), std::string::npos)
+        << entry.path();
+  }
+}
+
+std::uint64_t Fnv1a64(const Bytes& bytes) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (std::uint8_t byte : bytes) hash = (hash ^ byte) * 0x100000001b3ull;
+  return hash;
+}
+
+// A reader with nothing but docs/fixtures.md: manifest.json, the checksums, the bit layout.
+TEST_F(CliFixtures, ManifestAloneDecodesEveryFixture) {
+  const fs::path set = WriteSet();
+  const nlohmann::json manifest = nlohmann::json::parse(ReadText(set / "manifest.json"));
+  ASSERT_EQ(manifest["schema"], "aasim.fmask.fixtures");
+  ASSERT_EQ(manifest["version"], 1);
+  for (const nlohmann::json& fixture : manifest["fixtures"]) {
+    const std::string name = fixture["name"];
+    SCOPED_TRACE(name);
+    for (const nlohmann::json& file : fixture["files"]) {
+      const Bytes bytes = ReadFile(set / name / file["name"].get<std::string>());
+      char hex[17];
+      std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(Fnv1a64(bytes)));
+      EXPECT_EQ(bytes.size(), file["bytes"].get<std::size_t>());
+      EXPECT_EQ(hex, file["fnv1a64"].get<std::string>());
+    }
+    const int samples = fixture["samples"], fragments = fixture["fragments"];
+    const int bits = fixture["fmask"]["bits_per_sample"],
+              elementBytes = fixture["fmask"]["element_bytes"];
+    const nlohmann::json unknownCode = fixture["fmask"]["unknown_code"];
+    const Bytes fmask = ReadFile(set / name / "fmask.bin"),
+                colours = ReadFile(set / name / "colours.bin");
+    const Bytes decoded = ReadFile(set / name / "decoded.bin");
+    const int pixels = fixture["width"].get<int>() * fixture["height"].get<int>();
+    for (int pixel = 0; pixel < pixels; ++pixel) {
+      std::uint64_t element = 0;
+      for (int i = 0; i < elementBytes; ++i)
+        element |= std::uint64_t{fmask[pixel * elementBytes + i]} << (8 * i);
+      for (int s = 0; s < samples; ++s) {
+        const int code = static_cast<int>((element >> (s * bits)) & ((1u << bits) - 1));
+        const int slot = !unknownCode.is_null() && code == unknownCode.get<int>() ? 0 : code;
+        ASSERT_LT(slot, fragments);
+        for (int c = 0; c < 4; ++c) {
+          ASSERT_EQ(decoded[4 * (pixel * samples + s) + c],
+                    colours[4 * (pixel * fragments + slot) + c])
+              << "pixel " << pixel << " sample " << s;
+        }
+      }
+    }
+  }
+}
+
+TEST_F(CliFixtures, FlippedByteFailsNamingFixtureAndFile) {
+  const fs::path set = WriteSet();
+  const fs::path file = set / "8S4Z2F-standard-t-junction" / "fmask.bin";
+  Bytes bytes = ReadFile(file);
+  bytes[17] ^= 0x01;
+  WriteFile(file, bytes);
+  ExpectVerifyFails(set, {"fixture 8S4Z2F-standard-t-junction", "fmask.bin", "byte 17"});
+}
+
+TEST_F(CliFixtures, FlippedPreviewByteFails) {
+  const fs::path set = WriteSet();
+  const fs::path file = set / "16S8Z8F-eqaa-five-way-vertex" / "preview.png";
+  Bytes bytes = ReadFile(file);
+  bytes[bytes.size() / 2] ^= 0x40;
+  WriteFile(file, bytes);
+  ExpectVerifyFails(set, {"fixture 16S8Z8F-eqaa-five-way-vertex", "preview.png"});
+}
+
+TEST_F(CliFixtures, MissingFileFailsNamingIt) {
+  const fs::path set = WriteSet();
+  fs::remove(set / "4S2Z2F-eqaa-corner" / "depth.bin");
+  ExpectVerifyFails(set, {"fixture 4S2Z2F-eqaa-corner", "depth.bin", "missing"});
+}
+
+TEST_F(CliFixtures, ManifestChecksumMismatchFails) {
+  const fs::path set = WriteSet();
+  nlohmann::ordered_json manifest = nlohmann::ordered_json::parse(ReadText(set / "manifest.json"));
+  manifest["fixtures"][3]["files"][1]["fnv1a64"] = "0000000000000000";
+  const std::string name = manifest["fixtures"][3]["name"];
+  std::ofstream(set / "manifest.json") << manifest.dump();
+  ExpectVerifyFails(set, {"fixture " + name, "colours.bin", "checksum"});
+}
+
+TEST_F(CliFixtures, ManifestFieldEditFails) {
+  const fs::path set = WriteSet();
+  nlohmann::ordered_json manifest = nlohmann::ordered_json::parse(ReadText(set / "manifest.json"));
+  manifest["fixtures"][5]["fmask"]["bits_per_sample"] = 3;
+  const std::string name = manifest["fixtures"][5]["name"];
+  std::ofstream(set / "manifest.json") << manifest.dump();
+  ExpectVerifyFails(set, {"fixture " + name, "'fmask'"});
+}
+
+TEST_F(CliFixtures, UnknownSchemaVersionAndMissingManifestFail) {
+  const fs::path set = WriteSet();
+  nlohmann::ordered_json manifest = nlohmann::ordered_json::parse(ReadText(set / "manifest.json"));
+  manifest["version"] = 2;
+  std::ofstream(set / "manifest.json") << manifest.dump();
+  ExpectVerifyFails(set, {"manifest.json", "version 2 is not supported"});
+  std::ofstream(set / "manifest.json") << "{\"schema\": \"other\"}";
+  ExpectVerifyFails(set, {"manifest.json", "schema"});
+  std::ofstream(set / "manifest.json") << "{not json";
+  ExpectVerifyFails(set, {"manifest.json", "not valid JSON"});
+  fs::remove(set / "manifest.json");
+  ExpectVerifyFails(set, {"manifest.json", "cannot read"});
+}
+
+TEST_F(CliFixtures, UsageErrorsExitTwo) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"fixtures"},
+        std::vector<std::string>{"fixtures", "--out", "a", "--verify", "b"}}) {
+    const CommandResult result = Run(args);
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_EQ(result.err.rfind("aasim fixtures: ", 0), 0u) << result.err;
+  }
+}
+
+TEST_F(CliFixtures, UnwritableOutFailsWithoutOutput) {
+  std::ofstream(dir_ / "file") << "x";
+  const CommandResult result = Run({"fixtures", "--out", (dir_ / "file" / "set").string()});
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(result.err.rfind("aasim: --out ", 0), 0u) << result.err;
+}
+
+// OutputDir stages files in subfolders too; abandoned sets leave no folder behind.
+TEST_F(CliFixtures, OutputDirSubfoldersAreAllOrNothing) {
+  {
+    cli::OutputDir out(dir_ / "abandoned");
+    std::ofstream(out.Stage("a/b/c.bin")) << "x";
+  }
+  EXPECT_TRUE(fs::is_empty(dir_ / "abandoned"));
+  cli::OutputDir out(dir_ / "kept");
+  std::ofstream(out.Stage("a/b/c.bin")) << "x";
+  out.Commit();
+  EXPECT_EQ(ReadText(dir_ / "kept" / "a" / "b" / "c.bin"), "x");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "kept" / "a" / "b"), {}), 1);
+}
+
+}  // namespace
