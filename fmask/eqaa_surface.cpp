@@ -283,7 +283,7 @@ void EqaaSurface::UpdatePixel(const raster::QuadFragment& quad, int quadPixel, c
 
   // 1. Samples that passed an exact depth test leave their owner.
   ForEachSample(c.claimExact, [&](int s) { ref.owner[s] = kDetached; });
-  note("depth-tested passes taken from their owners: " + SampleList(c.claimExact));
+  if (event) note("depth-tested passes taken from their owners: " + SampleList(c.claimExact));
 
   // 2./3. Untestable covered samples lose their association (policy order decides whether
   // before or after the victim is chosen); the ones the incoming fragment keeps are claimed below.
@@ -295,7 +295,7 @@ void EqaaSurface::UpdatePixel(const raster::QuadFragment& quad, int quadPixel, c
       ref.causes[s] = UnknownCause::Untestable;
       ++counters.samplesUnknownByUntestable;
     });
-    if (c.untestable) note("untestable samples discarded: " + SampleList(c.untestable));
+    if (event && c.untestable) note("untestable samples discarded: " + SampleList(c.untestable));
   };
   if (policy_.order == DiscardOrder::DiscardThenEvict || (c.claim == 0 && policy_.discardWhenRejected)) discard();
 
@@ -309,11 +309,11 @@ void EqaaSurface::UpdatePixel(const raster::QuadFragment& quad, int quadPixel, c
       ref.owner[s] = slot;
       ref.causes[s] = UnknownCause::None;
     });
-    note("slot " + std::to_string(slot) + " <- primitive " + std::to_string(quad.primitiveId) + ", samples " +
+    if (event) note("slot " + std::to_string(slot) + " <- primitive " + std::to_string(quad.primitiveId) + ", samples " +
          SampleList(c.claim));
   } else {
     ++counters.fragmentsRejected;
-    note("incoming fragment claims no sample");
+    if (event) note("incoming fragment claims no sample");
   }
   FreeUnreferenced(ref, counters, note);
 
@@ -354,7 +354,7 @@ int EqaaSurface::AcquireSlot(PixelRef& ref, const std::array<int, raster::kMaxCo
   ++counters.evictions;
   ref.slots[victim].occupied = false;
   if (event) event->victim = victim;
-  note("evict slot " + std::to_string(victim) + " (primitive " + std::to_string(ref.slots[victim].primitiveId) +
+  if (event) note("evict slot " + std::to_string(victim) + " (primitive " + std::to_string(ref.slots[victim].primitiveId) +
        ", counted " + std::to_string(counts[victim]) + " samples); UNKNOWN: " + SampleList(evicted));
   return victim;
 }
