@@ -1,0 +1,126 @@
+#pragma once
+// Counters of one dispatch, counted where the lanes run and merged in a fixed order (style.md
+// habits 14-15): plain numerators and denominators, never ratios. The field tables below are
+// the only list of names; JSON, CSV and the summary are generated from them.
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "sim/wave.h"
+
+namespace sim {
+
+struct LaneCounters {
+  std::uint64_t waves = 0;
+  std::uint64_t groups = 0;        // compute groups (0 for pixel dispatches)
+  std::uint64_t lanesLaunched = 0;  // waves * 64
+  std::uint64_t lanesActive = 0;
+  std::uint64_t lanesHelper = 0;
+  std::uint64_t lanesDeadStencil = 0;
+  std::uint64_t lanesDeadEmpty = 0;
+  std::uint64_t quadsLaunched = 0;       // pixel dispatches: quads packed into waves
+  std::uint64_t quadsCulled = 0;         // rasterized quads with no pixel passing depth/stencil
+  std::uint64_t tilesHiStencilCulled = 0;  // 8x8 tiles dropped before any quad was formed
+  std::uint64_t pixelsScanned = 0;       // pixels the scan converter walked (timing estimate)
+  std::uint64_t ldsBytesRead = 0;
+  std::uint64_t ldsBytesWritten = 0;
+  std::uint64_t barriers = 0;            // group barriers executed (per group)
+  std::uint64_t appendOverflow = 0;      // appends dropped because the buffer was full
+  // Waves by active lanes, W0..W64.
+  std::array<std::uint64_t, kWaveLanes + 1> wavesByActiveLanes{};
+  // Rasterized quads by pixels passing depth/stencil, 0..4 (0 = culled, not launched).
+  std::array<std::uint64_t, raster::kQuadPixels + 1> quadsByLivePixels{};
+  // Pixel waves by the number of primitives they mix, 0..16 (index 0 unused).
+  std::array<std::uint64_t, kQuadsPerWave + 1> wavesByPrimitives{};
+
+  void Merge(const LaneCounters& other);
+  void CountLane(LaneKind kind);
+  friend bool operator==(const LaneCounters&, const LaneCounters&) = default;
+};
+
+struct LaneCounterField {
+  const char* name;  // "category/name", stable: JSON keys and CSV columns
+  std::uint64_t LaneCounters::*member;
+  const char* description;
+};
+
+inline constexpr LaneCounterField kLaneCounterFields[] = {
+    {"waves/launched", &LaneCounters::waves, "wave64s launched"},
+    {"groups/launched", &LaneCounters::groups, "compute groups launched"},
+    {"lanes/launched", &LaneCounters::lanesLaunched, "lanes of launched waves (64 per wave)"},
+    {"lanes/active", &LaneCounters::lanesActive, "lanes that ran for a pixel or thread"},
+    {"lanes/helper", &LaneCounters::lanesHelper,
+     "helper lanes: uncovered pixels of live quads, run for derivatives"},
+    {"lanes/dead_stencil", &LaneCounters::lanesDeadStencil,
+     "dead lanes: stencil-failed pixels of live quads"},
+    {"lanes/dead_empty", &LaneCounters::lanesDeadEmpty,
+     "dead lanes: empty lanes of partial waves (no quad, outside grid or item count)"},
+    {"quads/launched", &LaneCounters::quadsLaunched, "quads packed into pixel waves"},
+    {"quads/culled", &LaneCounters::quadsCulled,
+     "rasterized quads with no pixel passing depth/stencil"},
+    {"tiles/histencil_culled", &LaneCounters::tilesHiStencilCulled,
+     "8x8 tiles dropped by a hi-stencil pretest"},
+    {"pixels/scanned", &LaneCounters::pixelsScanned, "pixels walked by the scan converter"},
+    {"lds/bytes_read", &LaneCounters::ldsBytesRead, "LDS bytes read"},
+    {"lds/bytes_written", &LaneCounters::ldsBytesWritten, "LDS bytes written"},
+    {"groups/barriers", &LaneCounters::barriers, "group barriers"},
+    {"append/overflow", &LaneCounters::appendOverflow, "appends dropped: buffer full"},
+};
+
+// Histogram names; element i of "waves/by_active_lanes" is the number of waves with i active
+// lanes, and so on.
+inline constexpr const char* kWavesByActiveLanes = "waves/by_active_lanes";
+inline constexpr const char* kQuadsByLivePixels = "quads/by_live_pixels";
+inline constexpr const char* kWavesByPrimitives = "waves/by_primitives";
+
+template <typename Counters, typename Fn>
+void ForEachLaneHistogram(Counters& c, Fn&& fn) {
+  fn(kWavesByActiveLanes, c.wavesByActiveLanes);
+  fn(kQuadsByLivePixels, c.quadsByLivePixels);
+  fn(kWavesByPrimitives, c.wavesByPrimitives);
+}
+
+template <std::size_t N>
+void AddHistogram(std::array<std::uint64_t, N>& into, const std::array<std::uint64_t, N>& from) {
+  for (std::size_t i = 0; i < N; ++i) into[i] += from[i];
+}
+
+inline void LaneCounters::Merge(const LaneCounters& other) {
+  for (const auto& field : kLaneCounterFields) this->*field.member += other.*field.member;
+  AddHistogram(wavesByActiveLanes, other.wavesByActiveLanes);
+  AddHistogram(quadsByLivePixels, other.quadsByLivePixels);
+  AddHistogram(wavesByPrimitives, other.wavesByPrimitives);
+}
+
+inline void LaneCounters::CountLane(LaneKind kind) {
+  switch (kind) {
+    case LaneKind::Active: ++lanesActive; break;
+    case LaneKind::Helper: ++lanesHelper; break;
+    case LaneKind::DeadStencil: ++lanesDeadStencil; break;
+    case LaneKind::DeadEmpty: ++lanesDeadEmpty; break;
+  }
+}
+
+// Traffic of one bound resource in one dispatch: what lanes asked for, and the distinct
+// 64-byte lines behind it (the compulsory DRAM traffic, before any cache reuse across dispatches).
+struct ResourceTraffic {
+  std::string name;
+  std::string access;  // "read", "read-write", "append", "indirect-args", "stencil"
+  std::uint64_t bytesRead = 0;
+  std::uint64_t bytesWritten = 0;
+  std::uint64_t fetches = 0;  // load/sample instructions per lane (a bilinear sample is one)
+  std::uint64_t atomics = 0;
+  std::uint64_t linesRead = 0;
+  std::uint64_t linesWritten = 0;
+
+  void MergeLaneTraffic(const ResourceTraffic& other) {
+    bytesRead += other.bytesRead;
+    bytesWritten += other.bytesWritten;
+    fetches += other.fetches;
+    atomics += other.atomics;
+  }
+  std::uint64_t DramBytes() const { return (linesRead + linesWritten) * kCacheLineBytes; }
+};
+
+}  // namespace sim

@@ -1,0 +1,212 @@
+#pragma once
+// The machine's front door (style.md habit 13): every kernel launch is a named Dispatch with its
+// declared register/LDS use and resource bindings, run by Machine as one of four kinds:
+//   Draw        raster -> quads -> pixel waves -> colour backend (EQAA surface)
+//   FullScreen  a full-screen triangle with an optional stencil test: a quad runs when any of
+//               its pixels passes, failing pixels of a live quad are dead lanes, hi-stencil drops
+//               whole 8x8 tiles first (seed 000 "Stencil Culling Inefficiencies")
+//   Compute     a grid of groups, each ceil(N/64) consecutive waves with LDS and barriers
+//   IndirectCompute  group counts read from a buffer an earlier dispatch wrote (append counter ->
+//               dispatch arguments), as deferred queues do (seed 000 "Deferred Queues", aa-facts §3)
+// Each run returns a DispatchReport: lane counters, per-resource traffic, occupancy, a timing
+// estimate and a per-tile utilization heat map.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vector_relational.hpp>
+
+#include "fmask/eqaa_surface.h"
+#include "raster/rasterizer.h"
+#include "sim/counters.h"
+#include "sim/gpu_config.h"
+#include "sim/heat_map.h"
+#include "sim/lanes.h"
+#include "sim/occupancy.h"
+#include "sim/resources.h"
+#include "sim/timing.h"
+#include "sim/views.h"
+
+namespace sim {
+
+// What a kernel declares about itself (RGP reports the same per event, hw-facts §6.3).
+struct KernelInfo {
+  int vgprs = 16;
+  int sgprs = 16;
+  int ldsBytesPerGroup = 0;
+  // The author's estimate of VALU instructions one wave executes: the timing model's ALU input.
+  double valuInstructionsPerWave = 0.0;
+};
+
+class Dispatch {
+ public:
+  Dispatch(std::string name, KernelInfo kernel) : name_(std::move(name)), kernel_(kernel) {}
+
+  const std::string& Name() const { return name_; }
+  const KernelInfo& Kernel() const { return kernel_; }
+
+  template <typename T>
+  TextureView<T> Read(const Texture2D<T>& texture) { return {texture, Bind(texture, "read")}; }
+  template <typename T>
+  RwTextureView<T> ReadWrite(Texture2D<T>& texture) { return {texture, Bind(texture, "read-write")}; }
+  template <typename T>
+  BufferView<T> Read(const Buffer<T>& buffer) { return {buffer, Bind(buffer, "read")}; }
+  template <typename T>
+  RwBufferView<T> ReadWrite(Buffer<T>& buffer) { return {buffer, Bind(buffer, "read-write")}; }
+  template <typename T>
+  AppendView<T> Append(AppendBuffer<T>& buffer);
+  StencilView Stencil(StencilBuffer& stencil) { return {stencil, Bind(stencil, "stencil")}; }
+
+  // Compute dispatches over an image: thread (x, y) is pixel (x, y) in the heat map.
+  void SetPixelGrid(int width, int height) { pixelGrid_ = {width, height}; }
+
+ private:
+  friend class Machine;
+  struct Binding {
+    const Resource* resource;
+    std::string access;
+  };
+  struct AppendTarget {
+    std::size_t elementSize;
+    // Commits staged items (in chunk order) into the buffer; returns how many did not fit.
+    std::function<std::uint64_t(std::span<const std::byte>)> commit;
+  };
+  int Bind(const Resource& resource, std::string access);
+
+  std::string name_;
+  KernelInfo kernel_;
+  std::vector<Binding> bindings_;
+  std::vector<AppendTarget> appends_;
+  std::optional<glm::ivec2> pixelGrid_;
+};
+
+struct DispatchReport {
+  std::string name;
+  DispatchKind kind = DispatchKind::Compute;
+  KernelInfo kernel;
+  glm::ivec3 groupSize{0};   // compute kinds
+  glm::ivec3 groupCount{0};
+  LaneCounters lanes;
+  std::vector<ResourceTraffic> resources;
+  Occupancy occupancy;
+  TimeEstimate time;  // an estimate (docs/timing-model.md), labelled so in every output
+  TileHeatMap heat;
+  std::optional<raster::RasterCounters> raster;         // Draw and FullScreen
+  std::optional<fmask::FragmentCounters> fragments;     // Draw into an EQAA surface
+  double hostMilliseconds = 0.0;  // wall time of the simulation; not part of determinism
+
+  std::uint64_t DramBytes() const;
+};
+
+struct DrawCall {
+  raster::DrawInput input;
+  raster::DrawState state;
+  raster::DepthStencilSurface* depth = nullptr;  // required; its pattern is the sample pattern
+  fmask::EqaaSurface* colour = nullptr;          // optional colour target for the colour export
+  WaveFlush flush = WaveFlush::MixPrimitives;
+};
+
+struct FullScreenCall {
+  int width = 0, height = 0;
+  StencilBuffer* stencil = nullptr;  // optional stencil test against this buffer
+  raster::CompareFunc stencilFunc = raster::CompareFunc::Equal;
+  std::uint8_t stencilRef = 1;
+  std::uint8_t stencilMask = 0xFF;
+  bool hiStencil = true;  // program a hi-stencil pretest matching the test (hw-facts §5.3)
+  WaveFlush flush = WaveFlush::MixPrimitives;
+};
+
+struct ComputeGrid {
+  glm::ivec3 threads{1, 1, 1};    // logical threads; the last group per dimension may be partial
+  glm::ivec3 groupSize{64, 1, 1};
+};
+
+struct IndirectCall {
+  const Buffer<std::uint32_t>* arguments = nullptr;  // {groupsX, groupsY, groupsZ} at `offset`
+  std::size_t offset = 0;                             // element index
+  glm::ivec3 groupSize{64, 1, 1};
+  // Optional item count (e.g. an append counter): threads whose linear index is >= it are
+  // masked off by the kernel's bounds check and count as empty lanes.
+  const Buffer<std::uint32_t>* itemCount = nullptr;
+  std::size_t itemCountIndex = 0;
+};
+
+class Machine {
+ public:
+  explicit Machine(GpuConfig gpu) : gpu_(std::move(gpu)) {}
+
+  const GpuConfig& Gpu() const { return gpu_; }
+
+  // kernel(PixelLane&) -> fmask::Colour, the colour export of active lanes.
+  template <typename Kernel>
+  DispatchReport Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& kernel);
+  // kernel(PixelLane&) -> void.
+  template <typename Kernel>
+  DispatchReport FullScreen(Dispatch& dispatch, const FullScreenCall& call, Kernel&& kernel);
+  // Each stage is kernel(ComputeLane&) -> void; a group barrier separates consecutive stages.
+  template <typename... Stages>
+  DispatchReport Compute(Dispatch& dispatch, const ComputeGrid& grid, Stages&&... stages);
+  template <typename... Stages>
+  DispatchReport ComputeIndirect(Dispatch& dispatch, const IndirectCall& call, Stages&&... stages);
+
+  const std::vector<DispatchReport>& Reports() const { return reports_; }
+  void ClearReports() { reports_.clear(); }
+
+ private:
+  // Compute groups are simulated in fixed runs of this many groups per chunk, independent of the
+  // host thread count, so append order and counter merges are deterministic.
+  static constexpr std::size_t kGroupsPerChunk = 16;
+  // Which launched threads have work, and the bindings an indirect launch reads.
+  struct GroupLimits {
+    std::optional<std::uint32_t> itemCount;
+    int itemCountSlot = -1;  // binding of the item count, read once per wave by the bounds check
+    int argumentSlot = -1;   // binding of the indirect arguments, read by the command processor
+  };
+  struct IndirectLaunch {
+    glm::ivec3 groups{0};
+    GroupLimits limits;
+  };
+
+  std::vector<detail::ChunkState> MakeChunks(Dispatch& dispatch, std::size_t count, TileHeatMap* heat) const;
+  void ValidateKernel(const Dispatch& dispatch, int threadsPerGroup) const;
+  void ValidateGroup(const Dispatch& dispatch, glm::ivec3 groupSize) const;
+  IndirectLaunch ReadIndirectArguments(Dispatch& dispatch, const IndirectCall& call) const;
+  static void CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8_t>& live,
+                         const std::vector<glm::ivec2>& attribution, int wavesPerGroup, std::size_t barriers,
+                         int itemCountSlot);
+  void Finish(Dispatch& dispatch, DispatchReport report, std::vector<detail::ChunkState>& chunks,
+                               int threadsPerGroup);
+  const raster::RasterResult& RasterizeFullScreen(const FullScreenCall& call, Dispatch& dispatch);
+  // Where a pixel dispatch's quads come from and where its exports go.
+  struct PixelTargets {
+    const raster::SamplePattern* pattern = nullptr;
+    int width = 0, height = 0;
+    WaveFlush flush = WaveFlush::MixPrimitives;
+    fmask::EqaaSurface* colour = nullptr;     // Draw: colour export into the EQAA surface
+    const StencilBuffer* stencil = nullptr;   // FullScreen: the buffer the DB tests per pixel
+    int stencilSlot = -1;
+  };
+  template <typename Kernel>
+  void RunPixelWaves(Dispatch& dispatch, DispatchReport report, const raster::RasterResult& result,
+                                      const PixelTargets& targets, Kernel& kernel);
+  static void CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
+                                const PixelTargets& targets);
+  template <typename... Stages>
+  void RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 threads,
+                                  glm::ivec3 groupSize, const GroupLimits& limits, Stages&... stages);
+
+  GpuConfig gpu_;
+  raster::Rasterizer rasterizer_;
+  std::optional<raster::DepthStencilSurface> fullScreenSurface_;  // reused when no stencil is bound
+  std::vector<std::vector<std::array<fmask::Colour, raster::kQuadPixels>>> shaded_;  // per bin, per quad
+  std::vector<DispatchReport> reports_;
+};
+
+}  // namespace sim
+
+#include "sim/dispatch_inl.h"

@@ -1,0 +1,259 @@
+#pragma once
+// Template members of dispatch.h: the wave loops. Kernels are inlined into them (DESIGN.md
+// "Performance architecture"); chunks run in parallel and are merged in order by Machine::Finish.
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+
+#include <tbb/parallel_for.h>
+
+#include "sim/pixel_waves.h"
+
+namespace sim {
+
+template <typename T>
+AppendView<T> Dispatch::Append(AppendBuffer<T>& buffer) {
+  const int items = Bind(buffer.Storage(), "append");
+  const int counter = Bind(buffer.Counter(), "append-counter");
+  const int staging = static_cast<int>(appends_.size());
+  appends_.push_back({sizeof(T), [&buffer](std::span<const std::byte> staged) -> std::uint64_t {
+                        Buffer<T>& storage = buffer.Storage();
+                        const auto bytes = static_cast<std::size_t>(storage.ElementBytes());
+                        std::uint32_t& count = buffer.Counter().At(0);
+                        std::uint64_t overflow = 0;
+                        for (std::size_t at = 0; at < staged.size(); at += sizeof(T)) {
+                          if (count >= storage.Size()) {
+                            ++overflow;
+                            continue;
+                          }
+                          std::memcpy(&storage.At(count), staged.data() + at, sizeof(T));
+                          storage.TouchWrite(count * bytes, bytes);
+                          ++count;
+                        }
+                        if (!staged.empty()) buffer.Counter().TouchWrite(0, 4);
+                        return overflow;
+                      }});
+  return {items, counter, staging, buffer.Storage().ElementBytes()};
+}
+
+namespace detail {
+inline double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+}  // namespace detail
+
+template <typename Kernel>
+DispatchReport Machine::Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& kernel) {
+  const auto start = std::chrono::steady_clock::now();
+  if (call.depth == nullptr) throw std::invalid_argument(dispatch.Name() + ": a draw needs a depth/stencil surface");
+  const raster::DepthSurfaceConfig& depth = call.depth->Config();
+  if (call.colour != nullptr && (call.colour->Width() != depth.width || call.colour->Height() != depth.height)) {
+    throw std::invalid_argument(dispatch.Name() + ": colour surface " + std::to_string(call.colour->Width()) + "x" +
+                                std::to_string(call.colour->Height()) + " does not match depth surface " +
+                                std::to_string(depth.width) + "x" + std::to_string(depth.height));
+  }
+  ValidateKernel(dispatch, kWaveLanes);
+  const raster::RasterResult& result = rasterizer_.Run(call.input, call.state, *call.depth);
+  DispatchReport report;
+  report.kind = DispatchKind::Draw;
+  report.raster = result.counters;
+  PixelTargets targets;
+  targets.pattern = &call.depth->Pattern();
+  targets.width = depth.width;
+  targets.height = depth.height;
+  targets.flush = call.flush;
+  targets.colour = call.colour;
+  RunPixelWaves(dispatch, std::move(report), result, targets, kernel);
+  reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
+  return reports_.back();
+}
+
+template <typename Kernel>
+DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& call, Kernel&& kernel) {
+  const auto start = std::chrono::steady_clock::now();
+  ValidateKernel(dispatch, kWaveLanes);
+  PixelTargets targets;
+  targets.width = call.width;
+  targets.height = call.height;
+  targets.flush = call.flush;
+  targets.stencil = call.stencil;
+  if (call.stencil != nullptr) targets.stencilSlot = dispatch.Bind(*call.stencil, "stencil-test");
+  const raster::RasterResult& result = RasterizeFullScreen(call, dispatch);
+  DispatchReport report;
+  report.kind = DispatchKind::FullScreen;
+  report.raster = result.counters;
+  report.lanes.tilesHiStencilCulled = result.counters.tilesHiStencilRejected;
+  targets.pattern = call.stencil != nullptr ? &call.stencil->Surface().Pattern() : &fullScreenSurface_->Pattern();
+  RunPixelWaves(dispatch, std::move(report), result, targets, kernel);
+  reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
+  return reports_.back();
+}
+
+template <typename Kernel>
+void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
+                                             const raster::RasterResult& result, const PixelTargets& targets,
+                                             Kernel& kernel) {
+  using Export = std::invoke_result_t<Kernel&, PixelLane&>;
+  static_assert(std::is_void_v<Export> || std::is_same_v<Export, fmask::Colour>,
+                "a pixel kernel returns void or its fmask::Colour export");
+  const std::size_t bins = result.quadsByBin.size();
+  fmask::EqaaSurface* const colour = targets.colour;
+  report.heat = TileHeatMap(targets.width, targets.height);
+  report.lanes.pixelsScanned += (result.counters.quadsFull + result.counters.quadsPartial) * raster::kQuadPixels;
+  std::vector<detail::ChunkState> chunks = MakeChunks(dispatch, bins, &report.heat);
+  if (colour != nullptr) {
+    shaded_.resize(bins);
+    for (std::size_t bin = 0; bin < bins; ++bin) shaded_[bin].assign(result.quadsByBin[bin].size(), {});
+  }
+  const DispatchKind kind = report.kind;
+  tbb::parallel_for(std::size_t{0}, bins, [&](std::size_t bin) {
+    detail::ChunkState& chunk = chunks[bin];
+    const std::vector<raster::QuadFragment>& quads = result.quadsByBin[bin];
+    PackedWaves packed;
+    if (targets.stencil != nullptr) {
+      for (const raster::QuadFragment& quad : quads) CountStencilReads(chunk, quad, targets);
+    }
+    PackPixelWaves(quads, targets.flush, packed, chunk.lanes);
+    for (std::size_t wave = 0; wave < packed.WaveCount(); ++wave) {
+      int active = 0;
+      const std::uint32_t first = packed.waveStarts[wave], last = packed.waveStarts[wave + 1];
+      for (std::uint32_t k = first; k < last; ++k) {
+        const std::uint32_t quadIndex = packed.quads[k];
+        const raster::QuadFragment& quad = quads[quadIndex];
+        std::array<PixelLane, raster::kQuadPixels> lanes;
+        for (int p = 0; p < raster::kQuadPixels; ++p) {
+          PixelLane& lane = lanes[static_cast<std::size_t>(p)];
+          lane.lane = static_cast<int>(k - first) * raster::kQuadPixels + p;
+          lane.chunk = &chunk;
+          lane.x = quad.x + (p & 1);
+          lane.y = quad.y + (p >> 1);
+          lane.quadPixel = p;
+          lane.quadInWave = static_cast<int>(k - first);
+          lane.quad = &quad;
+          lane.triangle = kind == DispatchKind::Draw ? &result.triangles[quad.setupIndex] : nullptr;
+          lane.pattern = targets.pattern;
+          lane.quadLanes = &lanes;
+        }
+        for (int p = 0; p < raster::kQuadPixels; ++p) {
+          PixelLane& lane = lanes[static_cast<std::size_t>(p)];
+          const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
+          chunk.lanes.CountLane(laneKind);
+          chunk.heat->Add(lane.x, lane.y, laneKind);
+          if (laneKind != LaneKind::Active && laneKind != LaneKind::Helper) continue;
+          lane.helper = laneKind == LaneKind::Helper;
+          active += laneKind == LaneKind::Active;
+          if constexpr (std::is_void_v<Export>) {
+            kernel(lane);
+          } else {
+            const fmask::Colour exported = kernel(lane);
+            if (colour != nullptr && !lane.helper) shaded_[bin][quadIndex][static_cast<std::size_t>(p)] = exported;
+          }
+        }
+      }
+      chunk.lanes.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes) - (last - first) * raster::kQuadPixels;
+      chunk.lanes.lanesLaunched += kWaveLanes;
+      ++chunk.lanes.wavesByActiveLanes[static_cast<std::size_t>(active)];
+    }
+  });
+  if (colour != nullptr) {
+    report.fragments = colour->UpdateAll(result, [&](const raster::QuadFragment& quad, int p) {
+      const std::size_t bin = static_cast<std::size_t>(quad.y / raster::kBinSize) * static_cast<std::size_t>(result.binsX) +
+                              static_cast<std::size_t>(quad.x / raster::kBinSize);
+      const auto index = static_cast<std::size_t>(&quad - result.quadsByBin[bin].data());
+      return shaded_[bin][index][static_cast<std::size_t>(p)];
+    });
+  }
+  Finish(dispatch, std::move(report), chunks, kWaveLanes);
+}
+
+template <typename... Stages>
+DispatchReport Machine::Compute(Dispatch& dispatch, const ComputeGrid& grid, Stages&&... stages) {
+  static_assert(sizeof...(Stages) >= 1, "a compute kernel has at least one stage");
+  const auto start = std::chrono::steady_clock::now();
+  ValidateGroup(dispatch, grid.groupSize);
+  if (grid.threads.x < 0 || grid.threads.y < 0 || grid.threads.z < 0) {
+    throw std::invalid_argument(dispatch.Name() + ": negative thread count");
+  }
+  DispatchReport report;
+  report.kind = DispatchKind::Compute;
+  RunGroups(dispatch, std::move(report), grid.threads, grid.groupSize, GroupLimits{}, stages...);
+  reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
+  return reports_.back();
+}
+
+template <typename... Stages>
+DispatchReport Machine::ComputeIndirect(Dispatch& dispatch, const IndirectCall& call, Stages&&... stages) {
+  static_assert(sizeof...(Stages) >= 1, "a compute kernel has at least one stage");
+  const auto start = std::chrono::steady_clock::now();
+  ValidateGroup(dispatch, call.groupSize);
+  DispatchReport report;
+  report.kind = DispatchKind::IndirectCompute;
+  const IndirectLaunch launch = ReadIndirectArguments(dispatch, call);
+  RunGroups(dispatch, std::move(report), launch.groups * call.groupSize, call.groupSize, launch.limits, stages...);
+  reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
+  return reports_.back();
+}
+
+template <typename... Stages>
+void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 threads,
+                                         glm::ivec3 groupSize, const GroupLimits& limits, Stages&... stages) {
+  const glm::ivec3 groups = (threads + groupSize - 1) / groupSize;
+  const std::size_t groupCount = static_cast<std::size_t>(groups.x) * static_cast<std::size_t>(groups.y) *
+                                 static_cast<std::size_t>(groups.z);
+  const int groupThreads = groupSize.x * groupSize.y * groupSize.z;
+  const int wavesPerGroup = (groupThreads + kWaveLanes - 1) / kWaveLanes;
+  const glm::ivec3 launched = groups * groupSize;
+  report.groupSize = groupSize;
+  report.groupCount = groups;
+  if (dispatch.pixelGrid_) report.heat = TileHeatMap(dispatch.pixelGrid_->x, dispatch.pixelGrid_->y);
+  const std::size_t chunkCount = (groupCount + kGroupsPerChunk - 1) / kGroupsPerChunk;
+  std::vector<detail::ChunkState> chunks = MakeChunks(dispatch, chunkCount, &report.heat);
+  if (limits.argumentSlot >= 0) {
+    // The command processor reads the three group counts (hw-facts §6.2 PKT3_DISPATCH_INDIRECT).
+    chunks[0].traffic[static_cast<std::size_t>(limits.argumentSlot)].bytesRead += 12;
+  }
+  const auto ldsBytes = static_cast<std::size_t>(dispatch.Kernel().ldsBytesPerGroup);
+  tbb::parallel_for(std::size_t{0}, chunkCount, [&](std::size_t chunkIndex) {
+    detail::ChunkState& chunk = chunks[chunkIndex];
+    chunk.lds.assign(ldsBytes, std::byte{0});
+    std::vector<ComputeLane> lanes(static_cast<std::size_t>(groupThreads));
+    std::vector<glm::ivec2> attribution(static_cast<std::size_t>(groupThreads));
+    std::vector<std::uint8_t> live(static_cast<std::size_t>(groupThreads));
+    const std::size_t end = std::min(groupCount, (chunkIndex + 1) * kGroupsPerChunk);
+    for (std::size_t g = chunkIndex * kGroupsPerChunk; g < end; ++g) {
+      const auto gi = static_cast<int>(g);
+      const glm::ivec3 groupId{gi % groups.x, (gi / groups.x) % groups.y, gi / (groups.x * groups.y)};
+      std::fill(chunk.lds.begin(), chunk.lds.end(), std::byte{0});
+      for (int i = 0; i < groupThreads; ++i) {
+        ComputeLane& lane = lanes[static_cast<std::size_t>(i)];
+        lane.chunk = &chunk;
+        lane.localIndex = i;
+        lane.waveInGroup = i / kWaveLanes;
+        lane.lane = i % kWaveLanes;
+        lane.groupId = groupId;
+        lane.localId = {i % groupSize.x, (i / groupSize.x) % groupSize.y, i / (groupSize.x * groupSize.y)};
+        lane.threadId = groupId * groupSize + lane.localId;
+        const long long linear = lane.threadId.x + static_cast<long long>(launched.x) *
+                                                       (lane.threadId.y + static_cast<long long>(launched.y) * lane.threadId.z);
+        const bool inGrid = glm::all(glm::lessThan(lane.threadId, threads));
+        live[static_cast<std::size_t>(i)] = inGrid && (!limits.itemCount || linear < *limits.itemCount);
+        attribution[static_cast<std::size_t>(i)] =
+            live[static_cast<std::size_t>(i)] && dispatch.pixelGrid_ ? glm::ivec2(lane.threadId) : glm::ivec2(-1);
+        lane.attribution = &attribution[static_cast<std::size_t>(i)];
+      }
+      auto runStage = [&](auto& stage) {
+        for (int i = 0; i < groupThreads; ++i) {
+          if (live[static_cast<std::size_t>(i)]) stage(lanes[static_cast<std::size_t>(i)]);
+        }
+      };
+      (runStage(stages), ...);
+      CountGroup(chunk, live, attribution, wavesPerGroup, sizeof...(Stages) - 1, limits.itemCountSlot);
+    }
+  });
+  Finish(dispatch, std::move(report), chunks, groupThreads);
+}
+
+}  // namespace sim

@@ -1,0 +1,152 @@
+// The frame pipeline (see frame.h).
+
+#include "sim/frame.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
+
+namespace sim {
+
+namespace {
+
+raster::DepthSurfaceConfig DepthConfig(const FrameSettings& settings) {
+  fmask::ValidateEqaaConfig(settings.eqaa);
+  if (settings.pattern.Count() != settings.eqaa.coverageSamples) {
+    throw std::invalid_argument("sample pattern '" + settings.pattern.Name() + "' has " +
+                                std::to_string(settings.pattern.Count()) + " samples, the EQAA mode " +
+                                fmask::EqaaName(settings.eqaa) + " needs " +
+                                std::to_string(settings.eqaa.coverageSamples));
+  }
+  raster::DepthSurfaceConfig config;
+  config.width = settings.width;
+  config.height = settings.height;
+  config.coverageSamples = settings.eqaa.coverageSamples;
+  config.depthSamples = settings.eqaa.depthSamples;
+  config.maxZPlanes = settings.maxZPlanes;
+  return config;
+}
+
+glm::vec2 ClipToScreen(const glm::vec4& clip, int width, int height) {
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  return {(ndc.x + 1.0f) * 0.5f * static_cast<float>(width), (1.0f - ndc.y) * 0.5f * static_cast<float>(height)};
+}
+
+template <typename T>
+T Interpolate(std::span<const T> values, std::span<const std::uint32_t> corners, const std::array<float, 3>& b) {
+  return values[corners[0]] * b[0] + values[corners[1]] * b[1] + values[corners[2]] * b[2];
+}
+
+}  // namespace
+
+FramePipeline::FramePipeline(Machine& machine, FrameSettings settings)
+    : machine_(machine), settings_(std::move(settings)), depth_(DepthConfig(settings_), settings_.pattern),
+      eqaa_(settings_.width, settings_.height, settings_.eqaa, settings_.policy, fmask::InitialState::Cleared,
+            settings_.clearColour),
+      colour_("colour", settings_.width, settings_.height, 4),
+      depthTarget_("depth", settings_.width, settings_.height, 4),
+      normal_("normal", settings_.width, settings_.height, 4),  // modelled as RGB10A2
+      objectId_("object-id", settings_.width, settings_.height, 4),
+      velocity_("velocity", settings_.width, settings_.height, 4) {}  // modelled as RG16F
+
+void FramePipeline::Validate(const FrameGeometry& geometry) const {
+  const std::size_t vertices = geometry.clipPositions.size();
+  const std::size_t triangles = geometry.indices.size() / 3;
+  if (geometry.indices.size() % 3 != 0) {
+    throw std::invalid_argument("frame geometry: index count " + std::to_string(geometry.indices.size()) +
+                                " is not a multiple of 3");
+  }
+  if (!geometry.previousClipPositions.empty() && geometry.previousClipPositions.size() != vertices) {
+    throw std::invalid_argument("frame geometry: " + std::to_string(geometry.previousClipPositions.size()) +
+                                " previous positions for " + std::to_string(vertices) + " vertices");
+  }
+  if (geometry.normals.size() != vertices) {
+    throw std::invalid_argument("frame geometry: " + std::to_string(geometry.normals.size()) + " normals for " +
+                                std::to_string(vertices) + " vertices");
+  }
+  if (geometry.objectIds.size() != triangles) {
+    throw std::invalid_argument("frame geometry: " + std::to_string(geometry.objectIds.size()) +
+                                " object ids for " + std::to_string(triangles) + " triangles");
+  }
+  for (std::size_t t = 0; t < triangles; ++t) {
+    if (geometry.objectIds[t] >= geometry.baseColours.size()) {
+      throw std::invalid_argument("frame geometry: triangle " + std::to_string(t) + " names object " +
+                                  std::to_string(geometry.objectIds[t]) + " of " +
+                                  std::to_string(geometry.baseColours.size()));
+    }
+  }
+}
+
+void FramePipeline::ClearTargets() {
+  depth_.Clear(1.0f, 0);
+  eqaa_ = fmask::EqaaSurface(settings_.width, settings_.height, settings_.eqaa, settings_.policy,
+                             fmask::InitialState::Cleared, settings_.clearColour);
+  depthTarget_.Fill(1.0f);
+  normal_.Fill(glm::vec4(0.0f));
+  objectId_.Fill(kNoObject);
+  velocity_.Fill(glm::vec2(0.0f));
+}
+
+DispatchReport FramePipeline::Render(const FrameGeometry& geometry) {
+  Validate(geometry);
+  ClearTargets();
+  Dispatch dispatch("frame/material", kMaterialKernel);
+  const RwTextureView<float> depthOut = dispatch.ReadWrite(depthTarget_);
+  const RwTextureView<glm::vec4> normalOut = dispatch.ReadWrite(normal_);
+  const RwTextureView<std::uint32_t> idOut = dispatch.ReadWrite(objectId_);
+  const RwTextureView<glm::vec2> velocityOut = dispatch.ReadWrite(velocity_);
+  const glm::vec3 towardsLight = glm::normalize(settings_.towardsLight);
+  const int width = settings_.width, height = settings_.height;
+  const float ambient = settings_.ambient;
+
+  auto material = [&](PixelLane& lane) -> fmask::Colour {
+    const std::uint32_t primitive = lane.quad->primitiveId;
+    const std::span<const std::uint32_t> corners = geometry.indices.subspan(3 * std::size_t{primitive}, 3);
+    // Centroid interpolation keeps partially covered pixels from extrapolating the normal.
+    const std::array<float, 3> b = lane.CentroidBarycentrics();
+    glm::vec3 normal = glm::normalize(Interpolate(geometry.normals, corners, b));
+    if (!lane.quad->frontFacing) normal = -normal;
+    const std::uint32_t object = geometry.objectIds[primitive];
+    const float lambert = std::max(0.0f, glm::dot(normal, towardsLight));
+    const glm::vec3 shaded = geometry.baseColours[object] * (ambient + (1.0f - ambient) * lambert);
+    if ((lane.Passed() & 1u) != 0) {
+      const glm::vec4 current = Interpolate(geometry.clipPositions, corners, b);
+      glm::vec2 velocity(0.0f);
+      if (!geometry.previousClipPositions.empty()) {
+        const glm::vec4 previous = Interpolate(geometry.previousClipPositions, corners, b);
+        velocity = ClipToScreen(current, width, height) - ClipToScreen(previous, width, height);
+      }
+      depthOut.Store(lane, lane.x, lane.y,
+                     lane.triangle->depth.Evaluate(raster::SampleX(lane.x, 0), raster::SampleY(lane.y, 0)));
+      normalOut.Store(lane, lane.x, lane.y, glm::vec4(normal, 1.0f));
+      idOut.Store(lane, lane.x, lane.y, object);
+      velocityOut.Store(lane, lane.x, lane.y, velocity);
+    }
+    return {shaded.r, shaded.g, shaded.b, 1.0f};
+  };
+
+  DrawCall call;
+  call.input = {geometry.clipPositions, geometry.indices, 0};
+  call.state.cull = settings_.cull;
+  call.depth = &depth_;
+  call.colour = &eqaa_;
+  call.flush = settings_.flush;
+  DispatchReport report = machine_.Draw(dispatch, call, material);
+  fragments_ = report.fragments.value_or(fmask::FragmentCounters{});
+  Resolve();
+  return report;
+}
+
+void FramePipeline::Resolve() {
+  tbb::parallel_for(0, settings_.height, [&](int y) {
+    for (int x = 0; x < settings_.width; ++x) {
+      const fmask::Colour c = eqaa_.BoxResolve(x, y);
+      colour_.At(x, y) = {c.r, c.g, c.b, c.a};
+    }
+  });
+}
+
+}  // namespace sim

@@ -1,0 +1,95 @@
+#pragma once
+// The frame pipeline: geometry -> draw -> the material pixel kernel (Lambert + base colour) ->
+// EQAA surface, plus pixel-rate targets for the post passes (depth, normal, object id,
+// velocity), then the CB box resolve into a single-sample colour texture. Post passes
+// (passes/) take the targets from here; every dispatch lands in the Machine's report list.
+//
+// Pixel-rate targets keep the fragment that last passed coverage sample 0 of the pixel, the
+// sample an MSAA G-buffer read at sample 0 returns, so they are defined for every S.
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "fmask/eqaa_surface.h"
+#include "raster/depth_stencil.h"
+#include "raster/sample_pattern.h"
+#include "sim/dispatch.h"
+
+namespace sim {
+
+// Everything in the draw's vertex order; primitive id = triangle index into `indices`.
+struct FrameGeometry {
+  std::span<const glm::vec4> clipPositions;
+  std::span<const glm::vec4> previousClipPositions;  // same size, or empty for a still frame
+  std::span<const glm::vec3> normals;                // world space per vertex, or empty (face normals)
+  std::span<const std::uint32_t> indices;
+  std::span<const std::uint32_t> objectIds;          // per triangle
+  std::span<const glm::vec3> baseColours;            // linear, per object id
+};
+
+struct FrameSettings {
+  int width = 1920;
+  int height = 1080;
+  fmask::EqaaConfig eqaa{8, 4, 2};
+  raster::SamplePattern pattern = raster::MakeBuiltinPattern("eqaa", 8);
+  fmask::ArbitrationPolicy policy = fmask::PolicyByName("hraa");
+  int maxZPlanes = 4;
+  WaveFlush flush = WaveFlush::MixPrimitives;
+  raster::CullMode cull = raster::CullMode::Back;
+  glm::vec3 towardsLight{0.4f, 0.8f, 0.45f};  // world space; normalised on use
+  float ambient = 0.15f;
+  fmask::Colour clearColour{0.05f, 0.05f, 0.08f, 1.0f};
+};
+
+// The material kernel's declared resources and instruction estimate (an estimate for the timing
+// model, not a compiled shader): interpolation, normalise, one N.L and the G-buffer exports.
+inline constexpr KernelInfo kMaterialKernel{.vgprs = 24, .sgprs = 24, .ldsBytesPerGroup = 0,
+                                            .valuInstructionsPerWave = 64};
+
+class FramePipeline {
+ public:
+  // Throws std::invalid_argument for an impossible EQAA mode, a pattern whose sample count is
+  // not S, or a size outside 1..kMaxDimension.
+  FramePipeline(Machine& machine, FrameSettings settings);
+
+  // Clears the surfaces, draws the geometry with the material kernel and resolves colour.
+  // Returns the draw's report. Throws std::invalid_argument naming the bad input.
+  DispatchReport Render(const FrameGeometry& geometry);
+
+  const FrameSettings& Settings() const { return settings_; }
+  fmask::EqaaSurface& Eqaa() { return eqaa_; }
+  const fmask::EqaaSurface& Eqaa() const { return eqaa_; }
+  raster::DepthStencilSurface& DepthSurface() { return depth_; }
+  // Box-resolved colour (hw-facts §1.6), linear RGBA, modelled as RGBA8.
+  const Texture2D<glm::vec4>& Colour() const { return colour_; }
+  const Texture2D<float>& Depth() const { return depthTarget_; }
+  const Texture2D<glm::vec4>& Normal() const { return normal_; }  // xyz world normal, w = 1 if written
+  const Texture2D<std::uint32_t>& ObjectId() const { return objectId_; }
+  const Texture2D<glm::vec2>& Velocity() const { return velocity_; }  // pixels, current - previous
+  const fmask::FragmentCounters& Fragments() const { return fragments_; }
+
+ private:
+  void Validate(const FrameGeometry& geometry) const;
+  void ClearTargets();
+  void Resolve();
+
+  Machine& machine_;
+  FrameSettings settings_;
+  raster::DepthStencilSurface depth_;
+  fmask::EqaaSurface eqaa_;
+  Texture2D<glm::vec4> colour_;
+  Texture2D<float> depthTarget_;
+  Texture2D<glm::vec4> normal_;
+  Texture2D<std::uint32_t> objectId_;
+  Texture2D<glm::vec2> velocity_;
+  fmask::FragmentCounters fragments_;
+};
+
+inline constexpr std::uint32_t kNoObject = 0xFFFFFFFFu;
+
+}  // namespace sim

@@ -1,0 +1,115 @@
+#pragma once
+// What a kernel sees when it runs on one lane: its lane index, whether it is a helper, and the
+// pixel (with quad neighbours for derivatives) or the compute thread (with group shared memory).
+// Kernels are C++ callables taking a PixelLane& or ComputeLane&; resource views (sim/views.h)
+// take the lane so they can count traffic into the lane's chunk without locks.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "raster/rasterizer.h"
+#include "sim/counters.h"
+#include "sim/heat_map.h"
+
+namespace sim {
+
+// A kernel broke a rule of the machine (LDS access outside its declared size, a stencil export
+// from a compute kernel...). The message names the dispatch.
+class KernelError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+namespace detail {
+// Everything the lanes of one chunk (a scan-converter bin or a fixed run of compute groups)
+// accumulate; chunks are merged in order after the dispatch, so results do not depend on which
+// host thread ran which chunk.
+struct ChunkState {
+  const std::string* dispatchName = nullptr;
+  std::vector<ResourceTraffic> traffic;          // per binding
+  std::vector<std::vector<std::byte>> appends;   // per append binding, staged items
+  LaneCounters lanes;
+  TileHeatMap* heat = nullptr;
+  std::vector<std::byte> lds;                    // the current group's shared memory
+};
+}  // namespace detail
+
+struct LaneBase {
+  int lane = 0;         // 0..63 within the wave
+  bool helper = false;  // helper lanes run for derivatives; views drop their stores
+  detail::ChunkState* chunk = nullptr;
+};
+
+struct PixelLane : LaneBase {
+  int x = 0, y = 0;
+  int quadPixel = 0;   // raster::QuadPixelIndex order
+  int quadInWave = 0;  // 0..15
+  const raster::QuadFragment* quad = nullptr;
+  const raster::TriangleSetup* triangle = nullptr;  // draws only
+  const raster::SamplePattern* pattern = nullptr;
+  const std::array<PixelLane, raster::kQuadPixels>* quadLanes = nullptr;
+
+  glm::vec2 Centre() const { return {static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f}; }
+  raster::SampleMask Covered() const { return quad->covered.Pixel(quadPixel); }
+  raster::SampleMask Passed() const { return quad->passed.Pixel(quadPixel); }
+  // Perspective-correct barycentrics of the drawn triangle at the pixel centre, or at the
+  // centroid location (hw-facts §4.2) for attributes that must not extrapolate.
+  std::array<float, 3> Barycentrics() const;
+  std::array<float, 3> CentroidBarycentrics() const;
+
+  const PixelLane& QuadLane(int pixel) const { return (*quadLanes)[static_cast<std::size_t>(pixel)]; }
+  // Coarse derivatives within the quad, as GCN computes them: f is evaluated on the lanes of
+  // this lane's row (Ddx) or column (Ddy) and differenced, +x and +y positive.
+  template <typename F>
+  auto Ddx(F&& f) const {
+    const int row = quadPixel & 2;
+    return f(QuadLane(row + 1)) - f(QuadLane(row));
+  }
+  template <typename F>
+  auto Ddy(F&& f) const {
+    const int column = quadPixel & 1;
+    return f(QuadLane(column + 2)) - f(QuadLane(column));
+  }
+};
+
+struct ComputeLane : LaneBase {
+  glm::ivec3 threadId{0};  // global
+  glm::ivec3 groupId{0};
+  glm::ivec3 localId{0};
+  int localIndex = 0;      // wave * 64 + lane (hw-facts §6.2)
+  int waveInGroup = 0;
+  glm::ivec2* attribution = nullptr;  // heat-map pixel of this thread, (-1, -1) for none
+
+  // Group shared memory, indexed in elements of T; bounds-checked against the kernel's declared
+  // LDS size.
+  template <typename T>
+  T LdsLoad(std::size_t index) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    T value;
+    std::memcpy(&value, LdsAddress(index * sizeof(T), sizeof(T)), sizeof(T));
+    chunk->lanes.ldsBytesRead += sizeof(T);
+    return value;
+  }
+  template <typename T>
+  void LdsStore(std::size_t index, const T& value) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::memcpy(LdsAddress(index * sizeof(T), sizeof(T)), &value, sizeof(T));
+    chunk->lanes.ldsBytesWritten += sizeof(T);
+  }
+  // Names the pixel this lane worked on, for the heat map (indirect dispatches over queued items).
+  void AttributeTo(int px, int py) const { *attribution = {px, py}; }
+
+ private:
+  std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const;
+};
+
+}  // namespace sim

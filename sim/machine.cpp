@@ -1,0 +1,230 @@
+// Non-template parts of the machine (see dispatch.h): bindings, validation, the full-screen
+// triangle, indirect arguments, per-group lane counting, and merging chunks into a report.
+
+#include <array>
+#include <stdexcept>
+#include <string>
+
+#include "sim/dispatch.h"
+
+namespace sim {
+
+std::array<float, 3> PixelLane::Barycentrics() const {
+  return raster::PerspectiveBarycentrics(*triangle, x + 0.5, y + 0.5);
+}
+
+std::array<float, 3> PixelLane::CentroidBarycentrics() const {
+  const std::array<double, 2> at = raster::CentroidPosition(*quad, quadPixel, *pattern);
+  return raster::PerspectiveBarycentrics(*triangle, at[0], at[1]);
+}
+
+std::byte* ComputeLane::LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
+  if (byteOffset + bytes > chunk->lds.size()) {
+    throw KernelError(*chunk->dispatchName + ": LDS access at byte " + std::to_string(byteOffset) +
+                      " beyond the declared " + std::to_string(chunk->lds.size()) + " bytes");
+  }
+  return chunk->lds.data() + byteOffset;
+}
+
+std::uint64_t DispatchReport::DramBytes() const {
+  std::uint64_t bytes = 0;
+  for (const ResourceTraffic& traffic : resources) bytes += traffic.DramBytes();
+  return bytes;
+}
+
+int Dispatch::Bind(const Resource& resource, std::string access) {
+  for (std::size_t slot = 0; slot < bindings_.size(); ++slot) {
+    if (bindings_[slot].resource != &resource) continue;
+    // One resource bound twice is one binding, so its lines are counted once.
+    if (bindings_[slot].access != access) bindings_[slot].access = "read-write";
+    return static_cast<int>(slot);
+  }
+  bindings_.push_back({&resource, std::move(access)});
+  return static_cast<int>(bindings_.size() - 1);
+}
+
+std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::size_t count, TileHeatMap* heat) const {
+  for (const Dispatch::Binding& binding : dispatch.bindings_) const_cast<Resource*>(binding.resource)->BeginDispatch();
+  std::vector<detail::ChunkState> chunks(std::max<std::size_t>(count, 1));
+  for (detail::ChunkState& chunk : chunks) {
+    chunk.dispatchName = &dispatch.name_;
+    chunk.traffic.resize(dispatch.bindings_.size());
+    chunk.appends.resize(dispatch.appends_.size());
+    chunk.heat = heat;
+  }
+  return chunks;
+}
+
+void Machine::ValidateKernel(const Dispatch& dispatch, int threadsPerGroup) const {
+  const KernelInfo& kernel = dispatch.Kernel();
+  try {
+    TheoreticalOccupancy(gpu_, {kernel.vgprs, kernel.sgprs, kernel.ldsBytesPerGroup, threadsPerGroup});
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(dispatch.Name() + ": " + error.what());
+  }
+  if (!(kernel.valuInstructionsPerWave >= 0.0)) {
+    throw std::invalid_argument(dispatch.Name() + ": VALU instruction estimate must be >= 0");
+  }
+}
+
+void Machine::ValidateGroup(const Dispatch& dispatch, glm::ivec3 groupSize) const {
+  const long long threads = static_cast<long long>(groupSize.x) * groupSize.y * groupSize.z;
+  if (groupSize.x < 1 || groupSize.y < 1 || groupSize.z < 1 || threads > kMaxGroupThreads) {
+    throw std::invalid_argument(dispatch.Name() + ": group size " + std::to_string(groupSize.x) + "x" +
+                                std::to_string(groupSize.y) + "x" + std::to_string(groupSize.z) +
+                                " must be positive with at most " + std::to_string(kMaxGroupThreads) +
+                                " threads (hw-facts §6.2)");
+  }
+  ValidateKernel(dispatch, static_cast<int>(threads));
+}
+
+Machine::IndirectLaunch Machine::ReadIndirectArguments(Dispatch& dispatch, const IndirectCall& call) const {
+  if (call.arguments == nullptr || call.offset + 3 > call.arguments->Size()) {
+    throw std::invalid_argument(dispatch.Name() + ": indirect arguments need three group counts at element " +
+                                std::to_string(call.offset));
+  }
+  IndirectLaunch launch;
+  launch.limits.argumentSlot = dispatch.Bind(*call.arguments, "indirect-args");
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::uint32_t count = call.arguments->At(call.offset + static_cast<std::size_t>(axis));
+    // GCN takes group counts as 32-bit values; more than 2^31 - 1 is beyond any real grid and
+    // beyond glm::ivec3, so it is refused rather than wrapped.
+    if (count > static_cast<std::uint32_t>(std::numeric_limits<int>::max() / std::max(1, call.groupSize[axis]))) {
+      throw std::invalid_argument(dispatch.Name() + ": indirect group count " + std::to_string(count) +
+                                  " too large");
+    }
+    launch.groups[axis] = static_cast<int>(count);
+  }
+  if (call.itemCount != nullptr) {
+    if (call.itemCountIndex >= call.itemCount->Size()) {
+      throw std::invalid_argument(dispatch.Name() + ": item count index " + std::to_string(call.itemCountIndex) +
+                                  " outside its buffer");
+    }
+    launch.limits.itemCount = call.itemCount->At(call.itemCountIndex);
+    launch.limits.itemCountSlot = dispatch.Bind(*call.itemCount, "read");
+  }
+  return launch;
+}
+
+void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8_t>& live,
+                         const std::vector<glm::ivec2>& attribution, int wavesPerGroup, std::size_t barriers,
+                         int itemCountSlot) {
+  LaneCounters& counters = chunk.lanes;
+  ++counters.groups;
+  counters.barriers += barriers;
+  for (int wave = 0; wave < wavesPerGroup; ++wave) {
+    int active = 0;
+    for (int lane = 0; lane < kWaveLanes; ++lane) {
+      const auto i = static_cast<std::size_t>(wave * kWaveLanes + lane);
+      const bool isActive = i < live.size() && live[i] != 0;
+      active += isActive;
+      counters.CountLane(isActive ? LaneKind::Active : LaneKind::DeadEmpty);
+      if (isActive) chunk.heat->Add(attribution[i].x, attribution[i].y, LaneKind::Active);
+    }
+    ++counters.waves;
+    counters.lanesLaunched += kWaveLanes;
+    ++counters.wavesByActiveLanes[static_cast<std::size_t>(active)];
+  }
+  if (itemCountSlot >= 0) {
+    ResourceTraffic& traffic = chunk.traffic[static_cast<std::size_t>(itemCountSlot)];
+    traffic.fetches += static_cast<std::uint64_t>(wavesPerGroup);
+    traffic.bytesRead += 4 * static_cast<std::uint64_t>(wavesPerGroup);
+  }
+}
+
+void Machine::CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
+                                const PixelTargets& targets) {
+  // The DB reads one stencil byte per covered pixel of a quad that reached the per-pixel test.
+  ResourceTraffic& traffic = chunk.traffic[static_cast<std::size_t>(targets.stencilSlot)];
+  for (int p = 0; p < raster::kQuadPixels; ++p) {
+    if (quad.covered.Pixel(p) == 0) continue;
+    const int x = quad.x + (p & 1), y = quad.y + (p >> 1);
+    ++traffic.bytesRead;
+    targets.stencil->TouchRead(static_cast<std::size_t>(y) * static_cast<std::size_t>(targets.width) +
+                                   static_cast<std::size_t>(x),
+                               1);
+  }
+}
+
+const raster::RasterResult& Machine::RasterizeFullScreen(const FullScreenCall& call, Dispatch& dispatch) {
+  if (call.width < 1 || call.height < 1 || call.width > raster::kMaxDimension || call.height > raster::kMaxDimension) {
+    throw std::invalid_argument(dispatch.Name() + ": full-screen size " + std::to_string(call.width) + "x" +
+                                std::to_string(call.height) + " outside 1.." + std::to_string(raster::kMaxDimension));
+  }
+  raster::DrawState state;
+  state.cull = raster::CullMode::None;
+  state.depth.testEnable = false;
+  state.depth.writeEnable = false;
+  state.depth.hiZEnable = false;
+  raster::DepthStencilSurface* surface = nullptr;
+  if (call.stencil != nullptr) {
+    if (call.stencil->Width() != call.width || call.stencil->Height() != call.height) {
+      throw std::invalid_argument(dispatch.Name() + ": stencil buffer '" + call.stencil->Name() + "' is " +
+                                  std::to_string(call.stencil->Width()) + "x" + std::to_string(call.stencil->Height()) +
+                                  ", the pass is " + std::to_string(call.width) + "x" + std::to_string(call.height));
+    }
+    surface = &call.stencil->Surface();
+    state.stencil.enable = true;
+    state.stencil.func = call.stencilFunc;
+    state.stencil.ref = call.stencilRef;
+    state.stencil.readMask = call.stencilMask;
+    state.stencil.writeMask = 0;
+    // A driver that knows the compare programs a matching pretest (hw-facts §5.3), so tiles with
+    // no passing pixel are dropped before quads are formed.
+    std::array<raster::HiStencilPretest, raster::kHiStencilPretests> pretests{};
+    pretests[0] = {call.hiStencil, call.stencilFunc, call.stencilRef, call.stencilMask};
+    surface->SetHiStencilPretests(pretests);
+  } else {
+    if (!fullScreenSurface_ || fullScreenSurface_->Config().width != call.width ||
+        fullScreenSurface_->Config().height != call.height) {
+      raster::DepthSurfaceConfig config;
+      config.width = call.width;
+      config.height = call.height;
+      fullScreenSurface_.emplace(config, raster::MakeBuiltinPattern("centre", 1));
+    }
+    surface = &*fullScreenSurface_;
+  }
+  // One triangle covering the viewport: clip (-1,-1), (3,-1), (-1,3).
+  static constexpr std::array<glm::vec4, 3> kTriangle = {glm::vec4(-1, -1, 0, 1), glm::vec4(3, -1, 0, 1),
+                                                         glm::vec4(-1, 3, 0, 1)};
+  static constexpr std::array<std::uint32_t, 3> kIndices = {0, 1, 2};
+  return rasterizer_.Run({kTriangle, kIndices, 0}, state, *surface);
+}
+
+void Machine::Finish(Dispatch& dispatch, DispatchReport report,
+                                      std::vector<detail::ChunkState>& chunks, int threadsPerGroup) {
+  report.name = dispatch.Name();
+  report.kernel = dispatch.Kernel();
+  report.resources.resize(dispatch.bindings_.size());
+  for (detail::ChunkState& chunk : chunks) {
+    report.lanes.Merge(chunk.lanes);
+    for (std::size_t slot = 0; slot < chunk.traffic.size(); ++slot) {
+      report.resources[slot].MergeLaneTraffic(chunk.traffic[slot]);
+    }
+    for (std::size_t a = 0; a < chunk.appends.size(); ++a) {
+      report.lanes.appendOverflow += dispatch.appends_[a].commit(chunk.appends[a]);
+    }
+  }
+  for (std::size_t slot = 0; slot < dispatch.bindings_.size(); ++slot) {
+    const Dispatch::Binding& binding = dispatch.bindings_[slot];
+    ResourceTraffic& traffic = report.resources[slot];
+    traffic.name = binding.resource->Name();
+    traffic.access = binding.access;
+    traffic.linesRead = binding.resource->LinesRead();
+    traffic.linesWritten = binding.resource->LinesWritten();
+  }
+  const KernelInfo& kernel = dispatch.Kernel();
+  report.occupancy =
+      TheoreticalOccupancy(gpu_, {kernel.vgprs, kernel.sgprs, kernel.ldsBytesPerGroup, threadsPerGroup});
+  WorkEstimate work;
+  work.waves = report.lanes.waves;
+  work.valuInstructionsPerWave = kernel.valuInstructionsPerWave;
+  work.dramBytes = report.DramBytes();
+  work.rasterPixels = report.lanes.pixelsScanned;
+  work.hiStencilTiles = report.lanes.tilesHiStencilCulled;
+  work.occupancy = report.occupancy;
+  report.time = EstimateTime(gpu_, work);
+  reports_.push_back(std::move(report));
+}
+
+}  // namespace sim

@@ -1,0 +1,208 @@
+#pragma once
+// Typed resource views: the only way a kernel touches memory. Each access counts bytes, fetch
+// instructions and atomics into the lane's chunk (a few integer adds) and marks the 64-byte lines
+// it touched. Out-of-range loads return zero and out-of-range stores are dropped, as D3D UAV
+// semantics require (aa-facts §3: the FXAA queue relies on dropped out-of-bounds writes); stores
+// and appends from helper lanes are dropped, as the hardware masks them (hw-facts §6.1).
+// Views are created by sim::Dispatch, which records the binding they count into.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
+
+#include "raster/depth_stencil.h"
+#include "sim/lanes.h"
+#include "sim/resources.h"
+
+namespace sim {
+
+namespace detail {
+inline ResourceTraffic& Traffic(const LaneBase& lane, int slot) {
+  return lane.chunk->traffic[static_cast<std::size_t>(slot)];
+}
+}  // namespace detail
+
+template <typename T>
+class TextureView {
+ public:
+  TextureView(const Texture2D<T>& texture, int slot) : texture_(&texture), slot_(slot) {}
+
+  int Width() const { return texture_->Width(); }
+  int Height() const { return texture_->Height(); }
+
+  T Load(const LaneBase& lane, int x, int y) const {
+    CountFetch(lane, 1);
+    return Texel(x, y);
+  }
+  // Clamp-to-edge addressing, uv in [0, 1] over the texture.
+  T SamplePoint(const LaneBase& lane, glm::vec2 uv) const {
+    CountFetch(lane, 1);
+    const glm::vec2 texel = uv * glm::vec2(Width(), Height());
+    return Texel(ClampX(static_cast<int>(std::floor(texel.x))), ClampY(static_cast<int>(std::floor(texel.y))));
+  }
+  T SampleBilinear(const LaneBase& lane, glm::vec2 uv) const {
+    CountFetch(lane, 4);
+    const glm::vec2 texel = uv * glm::vec2(Width(), Height()) - 0.5f;
+    const glm::vec2 base = glm::floor(texel);
+    const glm::vec2 f = texel - base;
+    const int x0 = static_cast<int>(base.x), y0 = static_cast<int>(base.y);
+    const T top = Texel(ClampX(x0), ClampY(y0)) * (1.0f - f.x) + Texel(ClampX(x0 + 1), ClampY(y0)) * f.x;
+    const T bottom = Texel(ClampX(x0), ClampY(y0 + 1)) * (1.0f - f.x) + Texel(ClampX(x0 + 1), ClampY(y0 + 1)) * f.x;
+    return top * (1.0f - f.y) + bottom * f.y;
+  }
+
+ private:
+  int ClampX(int x) const { return std::clamp(x, 0, Width() - 1); }
+  int ClampY(int y) const { return std::clamp(y, 0, Height() - 1); }
+  // One fetch instruction reading `texels` texels (the footprint; touched lines come from Texel).
+  void CountFetch(const LaneBase& lane, int texels) const {
+    ResourceTraffic& traffic = detail::Traffic(lane, slot_);
+    ++traffic.fetches;
+    traffic.bytesRead += static_cast<std::uint64_t>(texels) * static_cast<std::uint64_t>(texture_->TexelBytes());
+  }
+  T Texel(int x, int y) const {
+    if (!texture_->Contains(x, y)) return T{};
+    const std::size_t index = texture_->Index(x, y);
+    const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
+    texture_->TouchRead(index * bytes, bytes);
+    return texture_->At(x, y);
+  }
+
+  const Texture2D<T>* texture_;
+  int slot_;
+};
+
+template <typename T>
+class RwTextureView {
+ public:
+  RwTextureView(Texture2D<T>& texture, int slot) : texture_(&texture), read_(texture, slot), slot_(slot) {}
+
+  int Width() const { return texture_->Width(); }
+  int Height() const { return texture_->Height(); }
+  T Load(const LaneBase& lane, int x, int y) const { return read_.Load(lane, x, y); }
+  void Store(const LaneBase& lane, int x, int y, const T& value) const {
+    if (lane.helper || !texture_->Contains(x, y)) return;
+    const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
+    detail::Traffic(lane, slot_).bytesWritten += bytes;
+    texture_->TouchWrite(texture_->Index(x, y) * bytes, bytes);
+    texture_->At(x, y) = value;
+  }
+
+ private:
+  Texture2D<T>* texture_;
+  TextureView<T> read_;
+  int slot_;
+};
+
+template <typename T>
+class BufferView {
+ public:
+  BufferView(const Buffer<T>& buffer, int slot) : buffer_(&buffer), slot_(slot) {}
+  std::size_t Size() const { return buffer_->Size(); }
+  T Load(const LaneBase& lane, std::size_t index) const {
+    ResourceTraffic& traffic = detail::Traffic(lane, slot_);
+    ++traffic.fetches;
+    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
+    traffic.bytesRead += bytes;
+    if (index >= buffer_->Size()) return T{};
+    buffer_->TouchRead(index * bytes, bytes);
+    return buffer_->At(index);
+  }
+
+ private:
+  const Buffer<T>* buffer_;
+  int slot_;
+};
+
+template <typename T>
+class RwBufferView {
+ public:
+  RwBufferView(Buffer<T>& buffer, int slot) : buffer_(&buffer), read_(buffer, slot), slot_(slot) {}
+  std::size_t Size() const { return buffer_->Size(); }
+  T Load(const LaneBase& lane, std::size_t index) const { return read_.Load(lane, index); }
+  void Store(const LaneBase& lane, std::size_t index, const T& value) const {
+    if (lane.helper || index >= buffer_->Size()) return;
+    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
+    detail::Traffic(lane, slot_).bytesWritten += bytes;
+    buffer_->TouchWrite(index * bytes, bytes);
+    buffer_->At(index) = value;
+  }
+  // InterlockedAdd without a return value: additions commute, so the result is deterministic.
+  void AtomicAdd(const LaneBase& lane, std::size_t index, T value) const {
+    static_assert(std::is_integral_v<T>, "atomics are defined on integer buffers");
+    if (lane.helper || index >= buffer_->Size()) return;
+    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
+    ++detail::Traffic(lane, slot_).atomics;
+    buffer_->TouchWrite(index * bytes, bytes);
+    std::atomic_ref<T>(buffer_->At(index)).fetch_add(value, std::memory_order_relaxed);
+  }
+
+ private:
+  Buffer<T>* buffer_;
+  BufferView<T> read_;
+  int slot_;
+};
+
+// Append without a returned index (D3D AppendStructuredBuffer::Append). Each append is one
+// atomic on the hidden counter and one element written; items are committed after the dispatch.
+template <typename T>
+class AppendView {
+ public:
+  AppendView(int itemSlot, int counterSlot, int stagingIndex, int elementBytes)
+      : itemSlot_(itemSlot), counterSlot_(counterSlot), stagingIndex_(stagingIndex), elementBytes_(elementBytes) {}
+
+  void Append(const LaneBase& lane, const T& value) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    if (lane.helper) return;
+    ++detail::Traffic(lane, counterSlot_).atomics;
+    detail::Traffic(lane, itemSlot_).bytesWritten += static_cast<std::uint64_t>(elementBytes_);
+    std::vector<std::byte>& staging = lane.chunk->appends[static_cast<std::size_t>(stagingIndex_)];
+    const std::size_t at = staging.size();
+    staging.resize(at + sizeof(T));
+    std::memcpy(staging.data() + at, &value, sizeof(T));
+  }
+
+ private:
+  int itemSlot_, counterSlot_, stagingIndex_, elementBytes_;
+};
+
+// A stencil target for post passes: a one-sample depth/stencil surface whose per-pixel stencil a
+// pixel kernel exports and whose hi-stencil tile bits (hw-facts §5.3) a later full-screen pass
+// uses to drop tiles.
+class StencilBuffer : public Resource {
+ public:
+  StencilBuffer(std::string name, int width, int height);
+  raster::DepthStencilSurface& Surface() { return surface_; }
+  const raster::DepthStencilSurface& Surface() const { return surface_; }
+  int Width() const { return surface_.Config().width; }
+  int Height() const { return surface_.Config().height; }
+  void Clear(std::uint8_t value);
+
+ private:
+  raster::DepthStencilSurface surface_;
+};
+
+// Stencil export from a pixel kernel (the DB's stencil write). Only pixel dispatches may bind it:
+// bins own their 8x8 tiles, so hi-stencil refreshes never race.
+class StencilView {
+ public:
+  StencilView(StencilBuffer& stencil, int slot) : stencil_(&stencil), slot_(slot) {}
+  void Store(const PixelLane& lane, std::uint8_t value) const {
+    if (lane.helper || lane.x >= stencil_->Width() || lane.y >= stencil_->Height()) return;
+    detail::Traffic(lane, slot_).bytesWritten += 1;
+    stencil_->TouchWrite(static_cast<std::size_t>(lane.y) * static_cast<std::size_t>(stencil_->Width()) +
+                             static_cast<std::size_t>(lane.x),
+                         1);
+    stencil_->Surface().SetStencil(lane.x, lane.y, value);
+  }
+
+ private:
+  StencilBuffer* stencil_;
+  int slot_;
+};
+
+}  // namespace sim

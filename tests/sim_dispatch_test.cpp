@@ -1,0 +1,346 @@
+// The machine's closed-form cases (issue "The machine"): indirect dispatch utilization, full-screen
+// passes with and without stencil, hi-stencil tiles, helper lanes against a brute-force count,
+// wave packing rules, compute groups with LDS and barriers, traffic accounting and determinism.
+
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include "raster_test_util.h"
+#include "sim/dispatch.h"
+
+namespace sim {
+namespace {
+
+using raster::testing::ScreenToClip;
+
+Machine TestMachine() { return Machine(GpuConfigByName("ps4-class")); }
+
+KernelInfo SmallKernel() { return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10}; }
+
+std::uint64_t Ceil64(std::uint64_t n) { return (n + 63) / 64; }
+
+// Appends N items with a compute pass, turns the counter into dispatch arguments with a
+// one-thread kernel, then consumes the queue indirectly: the deferred-queue shape of seed 000.
+struct QueueRun {
+  DispatchReport append, arguments, consume;
+  std::vector<std::uint32_t> consumed;
+};
+
+QueueRun RunQueue(Machine& machine, int items) {
+  AppendBuffer<std::uint32_t> queue("queue", 4096);
+  Buffer<std::uint32_t> args("args", 3);
+  Buffer<std::uint32_t> seen("seen", 4096, 4, 0xFFFFFFFFu);
+  QueueRun run;
+  {
+    Dispatch d("test/append", SmallKernel());
+    const AppendView<std::uint32_t> out = d.Append(queue);
+    run.append = machine.Compute(d, {.threads = {items, 1, 1}, .groupSize = {64, 1, 1}},
+                                 [&](ComputeLane& lane) { out.Append(lane, static_cast<std::uint32_t>(lane.threadId.x)); });
+  }
+  {
+    Dispatch d("test/arguments", SmallKernel());
+    const BufferView<std::uint32_t> count = d.Read(queue.Counter());
+    const RwBufferView<std::uint32_t> argsOut = d.ReadWrite(args);
+    run.arguments = machine.Compute(d, {.threads = {1, 1, 1}, .groupSize = {1, 1, 1}}, [&](ComputeLane& lane) {
+      const std::uint32_t n = count.Load(lane, 0);
+      argsOut.Store(lane, 0, (n + 63) / 64);
+      argsOut.Store(lane, 1, 1);
+      argsOut.Store(lane, 2, 1);
+    });
+  }
+  {
+    Dispatch d("test/consume", SmallKernel());
+    const BufferView<std::uint32_t> in = d.Read(queue.Storage());
+    const RwBufferView<std::uint32_t> out = d.ReadWrite(seen);
+    run.consume = machine.ComputeIndirect(
+        d, {.arguments = &args, .offset = 0, .groupSize = {64, 1, 1}, .itemCount = &queue.Counter()},
+        [&](ComputeLane& lane) {
+          const auto i = static_cast<std::size_t>(lane.threadId.x);
+          out.Store(lane, i, in.Load(lane, i));
+        });
+  }
+  run.consumed.assign(seen.Elements().begin(), seen.Elements().begin() + items);
+  return run;
+}
+
+TEST(SimDispatch, IndirectDispatchLaunchesCeilNOver64Waves) {
+  Machine machine = TestMachine();
+  for (const int n : {0, 1, 2, 63, 64, 65, 127, 1000, 4096}) {
+    const QueueRun run = RunQueue(machine, n);
+    const LaneCounters& c = run.consume.lanes;
+    const std::uint64_t waves = Ceil64(static_cast<std::uint64_t>(n));
+    EXPECT_EQ(c.waves, waves) << n;
+    EXPECT_EQ(c.lanesLaunched, 64 * waves) << n;
+    EXPECT_EQ(c.lanesActive, static_cast<std::uint64_t>(n)) << n;
+    EXPECT_EQ(c.lanesDeadEmpty, 64 * waves - static_cast<std::uint64_t>(n)) << n;
+    EXPECT_EQ(c.lanesHelper + c.lanesDeadStencil, 0u);
+    // Every item consumed exactly once, in the (deterministic) append order.
+    for (int i = 0; i < n; ++i) ASSERT_EQ(run.consumed[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(i));
+    // The argument kernel is one thread: one wave with a single active lane.
+    EXPECT_EQ(run.arguments.lanes.waves, 1u);
+    EXPECT_EQ(run.arguments.lanes.wavesByActiveLanes[1], 1u);
+    EXPECT_EQ(run.append.resources[1].atomics, static_cast<std::uint64_t>(n));  // the hidden counter
+  }
+}
+
+TEST(SimDispatch, FullScreenWithoutStencilUsesEveryLaneAtMultipleOfEight) {
+  Machine machine = TestMachine();
+  for (const auto& [w, h] : {std::pair{64, 48}, std::pair{1920, 1080}, std::pair{8, 8}}) {
+    Dispatch d("test/fullscreen", SmallKernel());
+    const DispatchReport& r = machine.FullScreen(d, {.width = w, .height = h}, [](PixelLane&) {});
+    const auto pixels = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+    EXPECT_EQ(r.lanes.lanesActive, pixels);
+    EXPECT_EQ(r.lanes.lanesLaunched, pixels);
+    EXPECT_EQ(r.lanes.waves, pixels / 64);
+    EXPECT_EQ(r.lanes.wavesByActiveLanes[64], pixels / 64);
+    EXPECT_EQ(r.lanes.quadsByLivePixels[4], pixels / 4);
+  }
+}
+
+TEST(SimDispatch, FullScreenAtOddSizeRunsHelpersOutsideTheTarget) {
+  Machine machine = TestMachine();
+  Dispatch d("test/odd", SmallKernel());
+  int kernelRuns = 0, helperRuns = 0;
+  const DispatchReport& r = machine.FullScreen(d, {.width = 13, .height = 7}, [&](PixelLane& lane) {
+    ++kernelRuns;
+    helperRuns += lane.helper;
+  });
+  EXPECT_EQ(r.lanes.lanesActive, 91u);
+  EXPECT_EQ(r.lanes.quadsLaunched, 7u * 4u);
+  EXPECT_EQ(r.lanes.lanesHelper, 7u * 4u * 4u - 91u);
+  EXPECT_EQ(static_cast<std::uint64_t>(kernelRuns), r.lanes.lanesActive + r.lanes.lanesHelper);
+  EXPECT_EQ(static_cast<std::uint64_t>(helperRuns), r.lanes.lanesHelper);
+}
+
+TEST(SimDispatch, CheckerboardStencilHalvesActiveLanesWithEveryQuadLive) {
+  Machine machine = TestMachine();
+  const int w = 64, h = 32;
+  StencilBuffer stencil("stencil", w, h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) stencil.Surface().SetStencil(x, y, static_cast<std::uint8_t>((x + y) % 2 == 0));
+  }
+  Dispatch d("test/checker", SmallKernel());
+  const DispatchReport& r = machine.FullScreen(d, {.width = w, .height = h, .stencil = &stencil}, [](PixelLane&) {});
+  const std::uint64_t pixels = w * h;
+  EXPECT_EQ(r.lanes.lanesActive, pixels / 2);
+  EXPECT_EQ(r.lanes.lanesDeadStencil, pixels / 2);
+  EXPECT_EQ(r.lanes.lanesLaunched, pixels);
+  EXPECT_EQ(r.lanes.quadsByLivePixels[2], pixels / 4);
+  EXPECT_EQ(r.lanes.quadsCulled, 0u);
+  EXPECT_EQ(r.lanes.tilesHiStencilCulled, 0u);
+  for (int ty = 0; ty < r.heat.TilesY(); ++ty) {
+    for (int tx = 0; tx < r.heat.TilesX(); ++tx) EXPECT_FLOAT_EQ(r.heat.Utilization(tx, ty), 0.5f);
+  }
+  // The DB read one stencil byte per pixel.
+  ASSERT_EQ(r.resources.size(), 1u);
+  EXPECT_EQ(r.resources[0].bytesRead, pixels);
+}
+
+TEST(SimDispatch, WholeTileStencilHasNoDeadLanesAndHiStencilCullsTheRest) {
+  Machine machine = TestMachine();
+  const int w = 64, h = 48;
+  StencilBuffer stencil("stencil", w, h);
+  int passingTiles = 0;
+  for (int ty = 0; ty < h / 8; ++ty) {
+    for (int tx = 0; tx < w / 8; ++tx) {
+      const bool pass = (tx + 2 * ty) % 3 == 0;
+      passingTiles += pass;
+      for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 8; ++x) stencil.Surface().SetStencil(tx * 8 + x, ty * 8 + y, pass ? 1 : 0);
+      }
+    }
+  }
+  Dispatch d("test/tiles", SmallKernel());
+  const DispatchReport& r = machine.FullScreen(d, {.width = w, .height = h, .stencil = &stencil}, [](PixelLane&) {});
+  const int tiles = (w / 8) * (h / 8);
+  EXPECT_EQ(r.lanes.lanesDeadStencil, 0u);
+  EXPECT_EQ(r.lanes.lanesDeadEmpty, 0u);
+  EXPECT_EQ(r.lanes.lanesActive, static_cast<std::uint64_t>(passingTiles) * 64);
+  EXPECT_EQ(r.lanes.tilesHiStencilCulled, static_cast<std::uint64_t>(tiles - passingTiles));
+  EXPECT_EQ(r.lanes.quadsCulled, 0u);
+  // Without the pretest the same pass forms and culls the quads one by one.
+  Dispatch noHi("test/tiles-no-histencil", SmallKernel());
+  const DispatchReport& r2 =
+      machine.FullScreen(noHi, {.width = w, .height = h, .stencil = &stencil, .hiStencil = false}, [](PixelLane&) {});
+  EXPECT_EQ(r2.lanes.tilesHiStencilCulled, 0u);
+  EXPECT_EQ(r2.lanes.quadsCulled, static_cast<std::uint64_t>(tiles - passingTiles) * 16);
+  EXPECT_EQ(r2.lanes.lanesActive, r.lanes.lanesActive);
+}
+
+TEST(SimDispatch, HelperLanesOfASingleTriangleMatchABruteForceCount) {
+  const int w = 40, h = 30;
+  const std::vector<glm::vec4> clip = {ScreenToClip(3.3, 2.1, 0.5, w, h), ScreenToClip(37.6, 9.8, 0.5, w, h),
+                                       ScreenToClip(11.2, 27.9, 0.5, w, h)};
+  const std::vector<std::uint32_t> indices = {0, 1, 2};
+  raster::DrawState state;
+  state.cull = raster::CullMode::None;
+  raster::DepthSurfaceConfig config;
+  config.width = w;
+  config.height = h;
+  config.coverageSamples = 4;
+  config.depthSamples = 4;
+  const raster::SamplePattern pattern = raster::MakeBuiltinPattern("standard", 4);
+  raster::DepthStencilSurface depth(config, pattern);
+  const raster::testing::ReferenceResult ref =
+      raster::testing::ReferenceRasterize({clip, indices, 0}, state, pattern, w, h);
+  std::uint64_t covered = 0, helpers = 0;
+  for (int qy = 0; qy < h; qy += 2) {
+    for (int qx = 0; qx < w; qx += 2) {
+      int live = 0;
+      for (int p = 0; p < 4; ++p) {
+        const int x = qx + (p & 1), y = qy + (p >> 1);
+        bool any = false;
+        for (int s = 0; s < 4; ++s) any |= ref.passed[(static_cast<std::size_t>(y) * w + x) * 4 + s] > 0;
+        live += any;
+      }
+      covered += static_cast<std::uint64_t>(live);
+      if (live > 0) helpers += static_cast<std::uint64_t>(4 - live);
+    }
+  }
+  Machine machine = TestMachine();
+  Dispatch d("test/triangle", SmallKernel());
+  const DispatchReport& r = machine.Draw(d, {.input = {clip, indices, 0}, .state = state, .depth = &depth},
+                                         [](PixelLane&) { return fmask::Colour{}; });
+  EXPECT_GT(helpers, 0u);
+  EXPECT_EQ(r.lanes.lanesActive, covered);
+  EXPECT_EQ(r.lanes.lanesHelper, helpers);
+  // Waves never span 32x32 bins, so each bin's last wave may be partial.
+  EXPECT_GE(r.lanes.waves, Ceil64(4 * r.lanes.quadsLaunched));
+  EXPECT_EQ(r.lanes.lanesDeadEmpty, 64 * r.lanes.waves - 4 * r.lanes.quadsLaunched);
+  EXPECT_EQ(r.lanes.wavesByPrimitives[1], r.lanes.waves);
+}
+
+raster::QuadFragment LiveQuad(std::uint32_t primitive, int livePixels) {
+  raster::QuadFragment quad;
+  quad.primitiveId = primitive;
+  for (int p = 0; p < livePixels; ++p) quad.passed.SetPixel(p, 1);
+  quad.covered = quad.passed;
+  return quad;
+}
+
+TEST(SimDispatch, WavePackingMixesPrimitivesUnlessTheFlushRuleSaysOtherwise) {
+  std::vector<raster::QuadFragment> quads;
+  for (int i = 0; i < 20; ++i) quads.push_back(LiveQuad(0, 4));
+  quads.push_back(LiveQuad(0, 0));  // culled
+  for (int i = 0; i < 3; ++i) quads.push_back(LiveQuad(1, 1));
+  PackedWaves packed;
+  LaneCounters mixed;
+  PackPixelWaves(quads, WaveFlush::MixPrimitives, packed, mixed);
+  EXPECT_EQ(packed.WaveCount(), 2u);
+  EXPECT_EQ(mixed.waves, 2u);
+  EXPECT_EQ(mixed.quadsCulled, 1u);
+  EXPECT_EQ(mixed.quadsLaunched, 23u);
+  EXPECT_EQ(mixed.wavesByPrimitives[1], 1u);  // 16 quads of primitive 0
+  EXPECT_EQ(mixed.wavesByPrimitives[2], 1u);  // 4 of primitive 0, 3 of primitive 1
+  LaneCounters split;
+  PackPixelWaves(quads, WaveFlush::OnePrimitivePerWave, packed, split);
+  EXPECT_EQ(packed.WaveCount(), 3u);
+  EXPECT_EQ(split.wavesByPrimitives[1], 3u);
+  EXPECT_EQ(packed.waveStarts, (std::vector<std::uint32_t>{0, 16, 20, 23}));
+
+  std::vector<raster::QuadFragment> many;
+  for (std::uint32_t i = 0; i < 17; ++i) many.push_back(LiveQuad(i, 1));
+  LaneCounters sixteen;
+  PackPixelWaves(many, WaveFlush::MixPrimitives, packed, sixteen);
+  EXPECT_EQ(sixteen.wavesByPrimitives[16], 1u);  // hw-facts §6.1: up to 16 primitives per wave
+  EXPECT_EQ(sixteen.wavesByPrimitives[1], 1u);
+}
+
+TEST(SimDispatch, ComputeGroupsSplitIntoConsecutiveWavesAndBarriersOrderLds) {
+  Machine machine = TestMachine();
+  const int groupThreads = 100;
+  Buffer<std::uint32_t> out("out", 3 * groupThreads);
+  KernelInfo kernel = SmallKernel();
+  kernel.ldsBytesPerGroup = groupThreads * 4;
+  Dispatch d("test/lds", kernel);
+  const RwBufferView<std::uint32_t> result = d.ReadWrite(out);
+  const DispatchReport& r = machine.Compute(
+      d, {.threads = {3 * groupThreads, 1, 1}, .groupSize = {groupThreads, 1, 1}},
+      [](ComputeLane& lane) {
+        lane.LdsStore<std::uint32_t>(static_cast<std::size_t>(lane.localIndex),
+                                     static_cast<std::uint32_t>(lane.threadId.x * 10));
+      },
+      [&](ComputeLane& lane) {
+        // After the barrier every thread sees its right neighbour's store.
+        const std::size_t next = static_cast<std::size_t>((lane.localIndex + 1) % groupThreads);
+        result.Store(lane, static_cast<std::size_t>(lane.threadId.x), lane.LdsLoad<std::uint32_t>(next));
+      });
+  for (int g = 0; g < 3; ++g) {
+    for (int i = 0; i < groupThreads; ++i) {
+      ASSERT_EQ(out.At(static_cast<std::size_t>(g * groupThreads + i)),
+                static_cast<std::uint32_t>((g * groupThreads + (i + 1) % groupThreads) * 10));
+    }
+  }
+  EXPECT_EQ(r.lanes.groups, 3u);
+  EXPECT_EQ(r.lanes.waves, 6u);  // ceil(100 / 64) = 2 per group
+  EXPECT_EQ(r.lanes.wavesByActiveLanes[64], 3u);
+  EXPECT_EQ(r.lanes.wavesByActiveLanes[36], 3u);
+  EXPECT_EQ(r.lanes.barriers, 3u);
+  EXPECT_EQ(r.lanes.ldsBytesWritten, 300u * 4);
+  EXPECT_EQ(r.lanes.ldsBytesRead, 300u * 4);
+
+  Dispatch bad("test/lds-overrun", kernel);
+  EXPECT_THROW(machine.Compute(bad, {.threads = {64, 1, 1}, .groupSize = {64, 1, 1}},
+                               [](ComputeLane& lane) { lane.LdsStore<std::uint32_t>(1000, 1u); }),
+               KernelError);
+}
+
+TEST(SimDispatch, TrafficCountsRequestsAndDistinctLines) {
+  Machine machine = TestMachine();
+  Texture2D<glm::vec4> texture("colour", 64, 64, 4);  // RGBA8 in the model
+  Texture2D<float> target("target", 64, 64, 4);
+  Dispatch d("test/traffic", SmallKernel());
+  const TextureView<glm::vec4> in = d.Read(texture);
+  const RwTextureView<float> out = d.ReadWrite(target);
+  d.SetPixelGrid(64, 64);
+  const DispatchReport& r = machine.Compute(d, {.threads = {64, 64, 1}, .groupSize = {8, 8, 1}}, [&](ComputeLane& lane) {
+    const glm::vec4 a = in.Load(lane, lane.threadId.x, lane.threadId.y);
+    const glm::vec4 b = in.SampleBilinear(lane, (glm::vec2(lane.threadId) + 0.5f) / 64.0f);
+    out.Store(lane, lane.threadId.x, lane.threadId.y, a.x + b.x);
+    out.Store(lane, -1, 0, 1.0f);  // out of range: dropped
+  });
+  ASSERT_EQ(r.resources.size(), 2u);
+  EXPECT_EQ(r.resources[0].fetches, 2u * 4096);
+  EXPECT_EQ(r.resources[0].bytesRead, 4096u * 4 + 4096u * 16);
+  EXPECT_EQ(r.resources[0].linesRead, 4096u * 4 / 64);
+  EXPECT_EQ(r.resources[1].bytesWritten, 4096u * 4);
+  EXPECT_EQ(r.resources[1].linesWritten, 4096u * 4 / 64);
+  EXPECT_EQ(r.DramBytes(), 2u * 4096 * 4);
+  EXPECT_EQ(r.lanes.lanesActive, 4096u);
+  EXPECT_FLOAT_EQ(r.heat.Utilization(3, 5), 1.0f);
+}
+
+TEST(SimDispatch, AppendOverflowIsCountedNotLost) {
+  Machine machine = TestMachine();
+  AppendBuffer<std::uint32_t> queue("small", 10);
+  Dispatch d("test/overflow", SmallKernel());
+  const AppendView<std::uint32_t> out = d.Append(queue);
+  const DispatchReport& r =
+      machine.Compute(d, {.threads = {25, 1, 1}}, [&](ComputeLane& lane) { out.Append(lane, 7u); });
+  EXPECT_EQ(queue.Count(), 10u);
+  EXPECT_EQ(r.lanes.appendOverflow, 15u);
+}
+
+TEST(SimDispatch, InvalidDispatchesAreRefusedWithTheirName) {
+  Machine machine = TestMachine();
+  KernelInfo tooMany = SmallKernel();
+  tooMany.vgprs = 300;
+  Dispatch d("test/too-many-vgprs", tooMany);
+  try {
+    machine.FullScreen(d, {.width = 8, .height = 8}, [](PixelLane&) {});
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("test/too-many-vgprs"), std::string::npos) << error.what();
+  }
+  Dispatch big("test/group", SmallKernel());
+  EXPECT_THROW(machine.Compute(big, {.threads = {64, 1, 1}, .groupSize = {2048, 1, 1}}, [](ComputeLane&) {}),
+               std::invalid_argument);
+  Buffer<std::uint32_t> shortArgs("args", 2);
+  Dispatch ind("test/indirect", SmallKernel());
+  EXPECT_THROW(machine.ComputeIndirect(ind, {.arguments = &shortArgs}, [](ComputeLane&) {}), std::invalid_argument);
+  EXPECT_TRUE(machine.Reports().empty());
+}
+
+}  // namespace
+}  // namespace sim
