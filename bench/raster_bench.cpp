@@ -20,6 +20,7 @@
 #include <oneapi/tbb/info.h>
 
 #include "cli/counters_json.h"
+#include "bench/bench_util.h"
 #include "cli/frame_input.h"
 #include "raster/limits.h"
 #include "raster/rasterizer.h"
@@ -83,12 +84,6 @@ Frame CaptureFrame(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface&
   return frame;
 }
 
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t mid = values.size() / 2;
-  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
-
 double TimeFrame(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface& surface,
                  raster::Rasterizer& rasterizer) {
   const auto start = std::chrono::steady_clock::now();
@@ -119,7 +114,7 @@ ConfigResult RunConfig(const cli::ClipSpaceScene& clip, const BenchOptions& opti
                                        .depthSamples = result.depthSamples},
                                       raster::MakeBuiltinPattern(kPattern, samples));
   TimeFrames(clip, surface, options, result);
-  result.medianMs = Median(result.frameMs);
+  result.medianMs = bench::Median(result.frameMs);
   const Frame single = CaptureFrame(clip, surface, 1);
   const Frame all = CaptureFrame(clip, surface, tbb::info::default_concurrency());
   result.counters = all.counters;

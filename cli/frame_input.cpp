@@ -1,10 +1,13 @@
-// Scene -> clip-space triangle list (see frame_input.h).
+// Scene -> clip-space triangle list and frame-pipeline inputs (see frame_input.h).
 
 #include "cli/frame_input.h"
 
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
+
+#include "sim/frame.h"
 
 namespace cli {
 
@@ -30,6 +33,50 @@ ClipSpaceScene ToClipSpace(const scenes::Scene& scene, float aspect) {
     }
   }
   return clip;
+}
+
+std::vector<glm::vec3> SmoothNormals(std::span<const glm::vec3> positions,
+                                     std::span<const std::uint32_t> indices) {
+  std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+  for (std::size_t corner = 0; corner + 2 < indices.size(); corner += 3) {
+    const std::uint32_t a = indices[corner], b = indices[corner + 1], c = indices[corner + 2];
+    // Twice the triangle's area in length, so large faces outweigh slivers.
+    const glm::vec3 face = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+    normals[a] += face;
+    normals[b] += face;
+    normals[c] += face;
+  }
+  for (glm::vec3& normal : normals) {
+    const float length = glm::length(normal);
+    normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  return normals;
+}
+
+FrameScene ToFrameScene(const scenes::Scene& scene, float aspect) {
+  FrameScene frame;
+  frame.clip = ToClipSpace(scene, aspect);
+  frame.normals.reserve(scene.VertexCount());
+  frame.objectIds.reserve(scene.TriangleCount());
+  for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+    const scenes::Mesh& source = scene.meshes[mesh];
+    const std::vector<glm::vec3> normals =
+        source.normals.empty() ? SmoothNormals(source.positions, source.indices) : source.normals;
+    frame.normals.insert(frame.normals.end(), normals.begin(), normals.end());
+    frame.objectIds.insert(frame.objectIds.end(), source.indices.size() / 3,
+                           static_cast<std::uint32_t>(mesh));
+    frame.baseColours.push_back(kMeshPalette[mesh % kMeshPalette.size()]);
+  }
+  return frame;
+}
+
+sim::FrameGeometry FrameScene::Geometry() const {
+  return {.clipPositions = clip.positions,
+          .previousClipPositions = {},
+          .normals = normals,
+          .indices = clip.indices,
+          .objectIds = objectIds,
+          .baseColours = baseColours};
 }
 
 }  // namespace cli

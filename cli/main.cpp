@@ -9,6 +9,8 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/fixtures_command.h"
+#include "cli/frame_command.h"
+#include "cli/frame_options.h"
 #include "cli/raster_command.h"
 #include "cli/raster_options.h"
 
@@ -42,26 +44,32 @@ int main(int argc, char** argv) {
   CLI::App* raster = cli::AddRasterCommand(app, rasterOptions);
   cli::FixturesCommandOptions fixturesOptions;
   CLI::App* fixtures = cli::AddFixturesCommand(app, fixturesOptions);
+  cli::FrameCommandOptions frameOptions;
+  CLI::App* frame = cli::AddFrameCommand(app, frameOptions);
 
   try {
     app.parse(argc, argv);
     if (raster->parsed()) cli::ResolveRasterOptions(rasterOptions);
+    if (frame->parsed()) cli::ResolveFrameOptions(frameOptions);
   } catch (const CLI::Success& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
     const char* command = raster->parsed()     ? "aasim raster"
                           : fixtures->parsed() ? "aasim fixtures"
+                          : frame->parsed()    ? "aasim frame"
                                                : "aasim";
     return ReportUsageError(command, error);
   }
 
-  if (!raster->parsed() && !fixtures->parsed()) {
+  if (!raster->parsed() && !fixtures->parsed() && !frame->parsed()) {
     std::cout << app.help();
     return 0;
   }
   try {
     if (raster->parsed()) {
       cli::RunRasterCommand(rasterOptions, std::cout);
+    } else if (frame->parsed()) {
+      cli::RunFrameCommand(frameOptions, std::cout);
     } else {
       cli::RunFixturesCommand(fixturesOptions, std::cout);
     }

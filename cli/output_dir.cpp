@@ -109,4 +109,12 @@ void OutputDir::RemoveTemporaries() noexcept {
   createdFolders_.clear();
 }
 
+OutputDir OpenOutOption(const std::filesystem::path& out) {
+  try {
+    return OutputDir(out);
+  } catch (const OutputError& error) {
+    throw OutputError("--out " + std::string(error.what()));
+  }
+}
+
 }  // namespace cli

@@ -43,4 +43,8 @@ class OutputDir {
   std::vector<std::filesystem::path> createdFolders_;  // in creation order
 };
 
+// An OutputDir for a command's --out option: OutputDir's errors, prefixed "--out " so the
+// message names the option.
+OutputDir OpenOutOption(const std::filesystem::path& out);
+
 }  // namespace cli

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,8 +20,8 @@
 #include "cli/frame_input.h"
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
-#include "cli/output_error.h"
 #include "cli/ownership.h"
+#include "cli/text_io.h"
 #include "fmask/eqaa_surface.h"
 #include "raster/rasterizer.h"
 #include "raster/sample_pattern.h"
@@ -49,14 +48,6 @@ struct RasterRun {
 double MsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
-}
-
-OutputDir OpenOutputDir(const std::string& out) {
-  try {
-    return OutputDir(out);
-  } catch (const OutputError& error) {
-    throw OutputError("--out " + std::string(error.what()));
-  }
 }
 
 raster::DrawState MakeDrawState(const RasterCommandOptions& options) {
@@ -146,20 +137,6 @@ nlohmann::ordered_json CountersDocument(const RasterCommandOptions& options, con
   document["timing"] = {{"rasterize_ms", run.rasterizeMs}};
   if (run.eqaa) document["timing"]["eqaa_ms"] = run.eqaa->updateMs;
   return document;
-}
-
-void WriteJson(const std::filesystem::path& path, const nlohmann::ordered_json& json) {
-  std::ofstream file(path);
-  file << json.dump(2) << '\n';
-  file.close();
-  if (!file) throw OutputError(path.string() + ": cannot write JSON");
-}
-
-void WriteText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream file(path);
-  file << text;
-  file.close();
-  if (!file) throw OutputError(path.string() + ": cannot write text");
 }
 
 void WriteEqaaOutputs(OutputDir& dir, const RasterCommandOptions& options, const EqaaRun& eqaa) {
@@ -257,7 +234,7 @@ void RunRasterCommand(const RasterCommandOptions& options, std::ostream& summary
   const tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism,
                                         static_cast<std::size_t>(options.threads));
   raster::SamplePattern pattern = raster::ResolvePattern(options.pattern, options.samples);
-  OutputDir dir = OpenOutputDir(options.out);
+  OutputDir dir = OpenOutOption(options.out);
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   const scenes::Scene scene = scenes::LoadScene(options.scene, aspect);

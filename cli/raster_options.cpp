@@ -4,17 +4,13 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdio>
 #include <iterator>
 #include <stdexcept>
 #include <vector>
 
-#include <oneapi/tbb/info.h>
-
+#include "cli/common_options.h"
 #include "raster/limits.h"
 #include "raster/rasterizer.h"
-#include "raster/sample_pattern.h"
-#include "scenes/scene.h"
 
 namespace cli {
 namespace {
@@ -50,56 +46,15 @@ constexpr NamedInitialState kFmaskInits[] = {
     {"unknown", fmask::InitialState::Unknown},
 };
 
-template <typename Table>
-std::vector<std::string> Names(const Table& table) {
-  std::vector<std::string> names;
-  for (const auto& entry : table) names.emplace_back(entry.name);
-  return names;
-}
-
-std::string JoinNames(const std::vector<std::string>& names) {
-  std::string joined;
-  for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
-  return joined;
-}
-
-std::string FormatGiB(std::uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.1f", static_cast<double>(bytes) / double(1u << 30));
-  return text;
-}
-
-void AddSceneOptions(CLI::App& command, RasterCommandOptions& options) {
-  options.scene = "builtin:" + std::string(scenes::kDefaultSceneName);
-  command
-      .add_option("--scene", options.scene,
-                  "Scene: a glTF 2.0 file (.gltf/.glb) or builtin:NAME with NAME one of " +
-                      JoinNames(scenes::BuiltinSceneNames()))
-      ->type_name("FILE|builtin:NAME")
-      ->capture_default_str();
-  command.add_option("--width", options.width, "Viewport width in pixels")
-      ->check(CLI::Range(1, raster::kMaxDimension))
-      ->capture_default_str();
-  command.add_option("--height", options.height, "Viewport height in pixels")
-      ->check(CLI::Range(1, raster::kMaxDimension))
-      ->capture_default_str();
-}
-
 void AddSurfaceOptions(CLI::App& command, RasterCommandOptions& options) {
   command.add_option("--samples", options.samples, "Coverage samples per pixel S")
-      ->check(CLI::IsMember({1, 2, 4, 8, 16}))
+      ->check(SampleCountCheck())
       ->capture_default_str();
   command
       .add_option("--depth-samples", options.depthSamples,
                   "Anchored depth samples per pixel Z, at most S [default: min(S, 8)]")
-      ->check(CLI::IsMember({1, 2, 4, 8}));
-  command
-      .add_option("--pattern", options.pattern,
-                  "Sample pattern: a JSON file (a path with '/' or ending in .json; format in "
-                  "docs/sample-patterns.md) or a built-in: " +
-                      JoinNames(raster::BuiltinPatternNames()))
-      ->type_name("NAME|FILE")
-      ->capture_default_str();
+      ->check(DepthSampleCountCheck());
+  AddPatternOption(command, options.pattern);
   command
       .add_option("--max-zplanes", options.maxZPlanes,
                   "Z planes an 8x8 tile holds before it decompresses (0 = no plane compression)")
@@ -120,10 +75,7 @@ void AddStateOptions(CLI::App& command, RasterCommandOptions& options) {
 }
 
 void AddRunOptions(CLI::App& command, RasterCommandOptions& options) {
-  options.threads = tbb::info::default_concurrency();
-  command.add_option("--threads", options.threads, "Worker threads [default: all cores]")
-      ->check(CLI::Range(1, 1024))
-      ->capture_default_str();
+  AddThreadsOption(command, options.threads);
   command
       .add_option("--out", options.out,
                   "Output directory for coverage.png, primitives.png, depth.exr, counters.json "
@@ -140,7 +92,7 @@ void AddEqaaOptions(CLI::App& command, RasterCommandOptions& options) {
           .add_option("--fragments", options.fragments,
                       "Colour fragments per pixel F: also render into an EQAA surface "
                       "(S/Z/F must be a legal EQAA mode) and write its outputs [default: off]")
-          ->check(CLI::IsMember({1, 2, 4, 8}));
+          ->check(FragmentCountCheck());
   command
       .add_option("--policy", options.policy,
                   "Fragment arbitration policy when all F slots are taken (docs/eqaa.md)")
@@ -172,11 +124,11 @@ std::string SizeOptions(const RasterCommandOptions& options) {
 void CheckMemory(const RasterCommandOptions& options) {
   const std::uint64_t bytes = EstimateRasterBytes(options.width, options.height, options.samples,
                                                   options.depthSamples, options.fragments);
-  if (bytes > kMaxRasterBytes) {
+  if (bytes > kMaxRunBytes) {
     throw CLI::ValidationError(
         SizeOptions(options) + ": needs about " + FormatGiB(bytes) + " GiB (" +
         (options.fragments > 0 ? "depth and EQAA surfaces" : "depth surface") +
-        ", quads and images), over the " + FormatGiB(kMaxRasterBytes) + " GiB limit");
+        ", quads and images), over the " + FormatGiB(kMaxRunBytes) + " GiB limit");
   }
 }
 
@@ -204,11 +156,7 @@ fmask::TracedPixel ParseTracedPixel(const std::string& text, int width, int heig
 }
 
 void ResolveEqaaOptions(RasterCommandOptions& options) {
-  try {
-    fmask::ValidateEqaaConfig(options.Eqaa());
-  } catch (const std::invalid_argument& error) {
-    throw CLI::ValidationError(error.what());
-  }
+  CheckEqaaMode(options.Eqaa());
   // MSAA layouts (F == S) have no UNKNOWN code to start from.
   if (FmaskInitByName(options.fmaskInit) == fmask::InitialState::Unknown &&
       !fmask::FmaskLayout::For(options.samples, options.fragments).IsEqaa()) {
@@ -230,7 +178,7 @@ CLI::App* AddRasterCommand(CLI::App& app, RasterCommandOptions& options) {
       "fragments and FMASK); write images and counters");
   // Scripts append overrides to a base command line, so a repeated option means its last value.
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  AddSceneOptions(*command, options);
+  AddViewportOptions(*command, options.scene, options.width, options.height);
   AddSurfaceOptions(*command, options);
   AddStateOptions(*command, options);
   AddRunOptions(*command, options);
@@ -241,19 +189,12 @@ CLI::App* AddRasterCommand(CLI::App& app, RasterCommandOptions& options) {
 std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthSamples,
                                   int fragments) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
-  const std::uint64_t surface = samples + 4u * depthSamples + 1u;
-  const std::uint64_t quads = sizeof(raster::QuadFragment) / raster::kQuadPixels;
   const std::uint64_t ownership = sizeof(float) + sizeof(std::uint32_t) + 1u;
   const std::uint64_t images = 4u * (depthSamples + 2u) + 4u;  // EXR channels, two PNGs
-  std::uint64_t perPixel = surface + quads + ownership + images;
-  if (fragments > 0) {
-    const std::uint64_t eqaa = sizeof(fmask::FmaskElement) +
-                               std::uint64_t(fragments) * sizeof(fmask::FragmentSlot) +
-                               std::uint64_t(samples) * sizeof(fmask::UnknownCause);
-    // eqaa.exr: RGBA, S codes, fragments, unknown; resolve.png and fmask.png are RGB.
-    const std::uint64_t eqaaImages = 4u * (samples + 6u) + 6u;
-    perPixel += eqaa + eqaaImages;
-  }
+  std::uint64_t perPixel =
+      SurfaceBytesPerPixel(samples, depthSamples, fragments) + ownership + images;
+  // eqaa.exr: RGBA, S codes, fragments, unknown; resolve.png and fmask.png are RGB.
+  if (fragments > 0) perPixel += 4u * (samples + 6u) + 6u;
   return pixels * perPixel;
 }
 

@@ -39,9 +39,6 @@ struct RasterCommandOptions {
   fmask::EqaaConfig Eqaa() const { return {samples, depthSamples, fragments}; }
 };
 
-// Refuse runs whose buffers would exceed this (see EstimateRasterBytes).
-inline constexpr std::uint64_t kMaxRasterBytes = std::uint64_t{4} << 30;
-
 // Registers the `raster` subcommand on `app`, bound to `options`.
 CLI::App* AddRasterCommand(CLI::App& app, RasterCommandOptions& options);
 

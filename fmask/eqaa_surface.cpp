@@ -113,6 +113,12 @@ FmaskLayout EqaaSurface::ValidatedLayout(const EqaaConfig& config) {
   return FmaskLayout::For(config.coverageSamples, config.fragments);
 }
 
+void EqaaSurface::Reset(InitialState initial, Colour clearColour) {
+  std::fill(traced_.begin(), traced_.end(), std::uint8_t{0});
+  trace_.clear();
+  Initialise(initial, clearColour);
+}
+
 void EqaaSurface::Initialise(InitialState initial, Colour clearColour) {
   const int samples = config_.coverageSamples, fragments = config_.fragments;
   FmaskElement element = FmaskLayout::ClearedValue();

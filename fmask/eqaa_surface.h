@@ -160,6 +160,10 @@ class EqaaSurface {
   UnknownCause Cause(int x, int y, int sample) const;
   int UnknownSamples(int x, int y) const;
 
+  // Back to the state the constructor left, without reallocating (a frame loop clears every
+  // frame); the trace and traced pixels are dropped.
+  void Reset(InitialState initial, Colour clearColour);
+
   // Traced pixels record every update into Trace(); set before Update.
   void TracePixels(std::span<const TracedPixel> pixels);
   const std::vector<TraceEvent>& Trace() const { return trace_; }

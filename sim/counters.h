@@ -121,6 +121,7 @@ struct ResourceTraffic {
     atomics += other.atomics;
   }
   std::uint64_t DramBytes() const { return (linesRead + linesWritten) * kCacheLineBytes; }
+  friend bool operator==(const ResourceTraffic&, const ResourceTraffic&) = default;
 };
 
 }  // namespace sim

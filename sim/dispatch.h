@@ -101,6 +101,9 @@ struct DispatchReport {
   double hostMilliseconds = 0.0;  // wall time of the simulation; not part of determinism
 
   std::uint64_t DramBytes() const;
+  // Everything the report says about the simulated machine, host wall time excluded: what a
+  // determinism check compares.
+  bool SameSimulation(const DispatchReport& other) const;
 };
 
 struct DrawCall {
@@ -165,7 +168,9 @@ class Machine {
   struct GroupLimits {
     std::optional<std::uint32_t> itemCount;
     int itemCountSlot = -1;  // binding of the item count, read once per wave by the bounds check
+    std::size_t itemCountByte = 0;
     int argumentSlot = -1;   // binding of the indirect arguments, read by the command processor
+    std::size_t argumentByte = 0;
   };
   struct IndirectLaunch {
     glm::ivec3 groups{0};
@@ -176,6 +181,7 @@ class Machine {
   void ValidateKernel(const Dispatch& dispatch, int threadsPerGroup) const;
   void ValidateGroup(const Dispatch& dispatch, glm::ivec3 groupSize) const;
   IndirectLaunch ReadIndirectArguments(Dispatch& dispatch, const IndirectCall& call) const;
+  void CountIndirectReads(Dispatch& dispatch, const GroupLimits& limits, detail::ChunkState& first) const;
   static void CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8_t>& live,
                          const std::vector<glm::ivec2>& attribution, int wavesPerGroup, std::size_t barriers,
                          int itemCountSlot);

@@ -211,10 +211,7 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
   if (dispatch.pixelGrid_) report.heat = TileHeatMap(dispatch.pixelGrid_->x, dispatch.pixelGrid_->y);
   const std::size_t chunkCount = (groupCount + kGroupsPerChunk - 1) / kGroupsPerChunk;
   std::vector<detail::ChunkState> chunks = MakeChunks(dispatch, chunkCount, &report.heat);
-  if (limits.argumentSlot >= 0) {
-    // The command processor reads the three group counts (hw-facts §6.2 PKT3_DISPATCH_INDIRECT).
-    chunks[0].traffic[static_cast<std::size_t>(limits.argumentSlot)].bytesRead += 12;
-  }
+  CountIndirectReads(dispatch, limits, chunks[0]);
   const auto ldsBytes = static_cast<std::size_t>(dispatch.Kernel().ldsBytesPerGroup);
   tbb::parallel_for(std::size_t{0}, chunkCount, [&](std::size_t chunkIndex) {
     detail::ChunkState& chunk = chunks[chunkIndex];

@@ -82,8 +82,7 @@ void FramePipeline::Validate(const FrameGeometry& geometry) const {
 
 void FramePipeline::ClearTargets() {
   depth_.Clear(1.0f, 0);
-  eqaa_ = fmask::EqaaSurface(settings_.width, settings_.height, settings_.eqaa, settings_.policy,
-                             fmask::InitialState::Cleared, settings_.clearColour);
+  eqaa_.Reset(fmask::InitialState::Cleared, settings_.clearColour);
   depthTarget_.Fill(1.0f);
   normal_.Fill(glm::vec4(0.0f));
   objectId_.Fill(kNoObject);

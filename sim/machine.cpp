@@ -32,6 +32,14 @@ std::uint64_t DispatchReport::DramBytes() const {
   return bytes;
 }
 
+bool DispatchReport::SameSimulation(const DispatchReport& other) const {
+  return name == other.name && kind == other.kind && groupSize == other.groupSize &&
+         groupCount == other.groupCount && lanes == other.lanes && resources == other.resources &&
+         occupancy.wavesPerSimd == other.occupancy.wavesPerSimd && occupancy.limiter == other.occupancy.limiter &&
+         time.totalMicroseconds == other.time.totalMicroseconds && heat == other.heat && raster == other.raster &&
+         fragments == other.fragments;
+}
+
 int Dispatch::Bind(const Resource& resource, std::string access) {
   for (std::size_t slot = 0; slot < bindings_.size(); ++slot) {
     if (bindings_[slot].resource != &resource) continue;
@@ -85,6 +93,7 @@ Machine::IndirectLaunch Machine::ReadIndirectArguments(Dispatch& dispatch, const
   }
   IndirectLaunch launch;
   launch.limits.argumentSlot = dispatch.Bind(*call.arguments, "indirect-args");
+  launch.limits.argumentByte = call.offset * 4;
   for (int axis = 0; axis < 3; ++axis) {
     const std::uint32_t count = call.arguments->At(call.offset + static_cast<std::size_t>(axis));
     // GCN takes group counts as 32-bit values; more than 2^31 - 1 is beyond any real grid and
@@ -102,8 +111,22 @@ Machine::IndirectLaunch Machine::ReadIndirectArguments(Dispatch& dispatch, const
     }
     launch.limits.itemCount = call.itemCount->At(call.itemCountIndex);
     launch.limits.itemCountSlot = dispatch.Bind(*call.itemCount, "read");
+    launch.limits.itemCountByte = call.itemCountIndex * 4;
   }
   return launch;
+}
+
+void Machine::CountIndirectReads(Dispatch& dispatch, const GroupLimits& limits, detail::ChunkState& first) const {
+  if (limits.argumentSlot >= 0) {
+    // The command processor reads the three group counts (hw-facts §6.2 PKT3_DISPATCH_INDIRECT).
+    const auto slot = static_cast<std::size_t>(limits.argumentSlot);
+    first.traffic[slot].bytesRead += 12;
+    dispatch.bindings_[slot].resource->TouchRead(limits.argumentByte, 12);
+  }
+  if (limits.itemCountSlot >= 0) {
+    // Every wave loads the count (CountGroup adds those bytes); one line holds it.
+    dispatch.bindings_[static_cast<std::size_t>(limits.itemCountSlot)].resource->TouchRead(limits.itemCountByte, 4);
+  }
 }
 
 void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8_t>& live,

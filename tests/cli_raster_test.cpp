@@ -5,30 +5,19 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <map>
 #include <ostream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
@@ -41,55 +30,19 @@
 #include "fmask/eqaa_surface.h"
 #include "raster/counters.h"
 #include "raster/rasterizer.h"
+#include "cli_test_util.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-// Appended piecewise: GCC 12 flags `" " + string` with a false -Wrestrict.
-void AppendQuoted(std::string& command, std::string_view prefix, const std::string& arg) {
-  command += prefix;
-  command += '\'';
-  command += arg;
-  command += '\'';
-}
-
-// Runs the built binary through the shell with stdout and stderr captured in `scratch`.
-CommandResult RunAasim(const std::vector<std::string>& args, const fs::path& scratch) {
-  std::string command;
-  AppendQuoted(command, "", AASIM_BINARY);
-  for (const std::string& arg : args) AppendQuoted(command, " ", arg);
-  const fs::path outPath = scratch / "stdout.txt", errPath = scratch / "stderr.txt";
-  AppendQuoted(command, " >", outPath.string());
-  AppendQuoted(command, " 2>", errPath.string());
-  const int status = std::system(command.c_str());
-  CommandResult result;
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = ReadText(outPath);
-  result.err = ReadText(errPath);
-  return result;
-}
-
-std::vector<std::string> FilesIn(const fs::path& dir) {
-  std::vector<std::string> names;
-  if (!fs::exists(dir)) return names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+using cli::testing::CommandResult;
+using cli::testing::ExrChannelNames;
+using cli::testing::FilesIn;
+using cli::testing::ReadExrChannels;
+using cli::testing::ReadText;
+using cli::testing::RunAasim;
+using cli::testing::WriteFile;
 
 // --- Small glTF files with the geometry in a base64 data URI. ---
 
@@ -157,57 +110,11 @@ const std::vector<float> kTrianglePositions{
     0.0f,  1.0f,  0.0f,
 };
 
-fs::path WriteFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-class CliRasterTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-    std::replace(name.begin(), name.end(), '/', '_');
-    scratch_ = fs::temp_directory_path() / ("aasim_cli_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(scratch_);
-    fs::create_directories(scratch_);
-  }
-  void TearDown() override { fs::remove_all(scratch_); }
-
-  fs::path scratch_;
-};
+class CliRasterTest : public cli::testing::ScratchDirTest {};
 
 std::vector<std::string> SmallRun(const fs::path& out) {
   return {"raster",    "--scene", "builtin:default", "--width",   "64", "--height", "48",
           "--samples", "4",       "--out",           out.string()};
-}
-
-std::vector<std::string> ExrChannelNames(const fs::path& path) {
-  Imf::InputFile file(path.c_str());
-  std::vector<std::string> names;
-  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
-    names.emplace_back(it.name());
-  }
-  return names;
-}
-
-// Every channel of an EXR file, by name.
-std::map<std::string, std::vector<float>> ReadExrChannels(const fs::path& path) {
-  Imf::InputFile file(path.c_str());
-  const Imath::Box2i window = file.header().dataWindow();
-  const std::size_t width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
-  const std::size_t height = static_cast<std::size_t>(window.max.y - window.min.y + 1);
-  std::map<std::string, std::vector<float>> channels;
-  Imf::FrameBuffer frameBuffer;
-  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
-    std::vector<float>& values = channels[it.name()];
-    values.resize(width * height);
-    frameBuffer.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()),
-                                             sizeof(float), sizeof(float) * width));
-  }
-  file.setFrameBuffer(frameBuffer);
-  file.readPixels(window.min.y, window.max.y);
-  return channels;
 }
 
 TEST_F(CliRasterTest, WritesTheFourOutputsAndCountersMatchTheFieldTable) {

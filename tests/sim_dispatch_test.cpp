@@ -81,6 +81,13 @@ TEST(SimDispatch, IndirectDispatchLaunchesCeilNOver64Waves) {
     EXPECT_EQ(run.arguments.lanes.waves, 1u);
     EXPECT_EQ(run.arguments.lanes.wavesByActiveLanes[1], 1u);
     EXPECT_EQ(run.append.resources[1].atomics, static_cast<std::uint64_t>(n));  // the hidden counter
+    // The command processor's argument read and the per-wave count loads touch one line each.
+    for (const ResourceTraffic& traffic : run.consume.resources) {
+      if (traffic.name == "args" || traffic.name == "queue/counter") {
+        EXPECT_EQ(traffic.linesRead, 1u) << traffic.name;
+      }
+    }
+    EXPECT_EQ(run.consume.resources.size(), 4u);
   }
 }
 

@@ -1,0 +1,64 @@
+#pragma once
+// The machine's per-dispatch reports as outputs: versioned JSON (aasim.dispatches), one CSV row
+// per dispatch, the aligned summary table and per-tile lane-utilization heat maps (EXR + PNG).
+// Every counter name comes from sim's and raster's field tables, so no output can drift from
+// the counters; formats in docs/cli.md "aasim frame".
+
+#include <cstddef>
+#include <filesystem>
+#include <ostream>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/dispatch.h"
+
+namespace cli {
+
+inline constexpr const char* kDispatchesSchema = "aasim.dispatches";
+inline constexpr int kDispatchesVersion = 1;
+
+// `strategies` is empty or parallel to `reports`: the dispatch strategy each dispatch ran under
+// ("stencil", "queue"; empty for dispatches outside a post pass). The pass dispatches of two
+// strategies share names, so every output carries it. Mismatched sizes throw
+// std::invalid_argument.
+
+// {"schema", "version", "gpu", "timing_model", "configuration", "dispatches": [...]};
+// `configuration` is echoed as given (the run's resolved options).
+nlohmann::ordered_json DispatchReportsJson(std::span<const sim::DispatchReport> reports,
+                                           const sim::GpuConfig& gpu,
+                                           const nlohmann::ordered_json& configuration,
+                                           std::span<const std::string> strategies = {});
+
+// Header row, then one row per dispatch; "\n" line ends.
+std::string DispatchReportsCsv(std::span<const sim::DispatchReport> reports,
+                               std::span<const std::string> strategies = {});
+// One CSV field: quoted, with inner quotes doubled, when it holds a comma, quote or line break.
+std::string CsvField(std::string_view text);
+
+// The table on stdout: lanes by kind, DRAM traffic, occupancy and the estimated time per
+// dispatch, under a line naming the GPU configuration the estimates come from.
+void PrintDispatchSummary(std::ostream& out, std::span<const sim::DispatchReport> reports,
+                          const sim::GpuConfig& gpu, std::span<const std::string> strategies = {});
+
+// One dispatch, `name`, run under two strategies, side by side: waves, active and launched
+// lanes, utilisation %, DRAM bytes, estimated µs, and the estimated µs of each whole pass
+// (every dispatch in `leftPass` / `rightPass`). std::invalid_argument when a pass lacks `name`.
+void PrintDispatchComparison(std::ostream& out, std::string_view name, std::string_view leftLabel,
+                             std::span<const sim::DispatchReport> leftPass,
+                             std::string_view rightLabel,
+                             std::span<const sim::DispatchReport> rightPass);
+
+// One pixel per 8x8 tile. EXR channels active, helper, dead, launched (lane counts) and
+// utilization (active / launched; 0 where launched is 0). The PNG shows utilization at 4x4
+// pixels per tile. Throws OutputError naming the path; std::invalid_argument for an empty map.
+void WriteHeatMap(const sim::TileHeatMap& heat, const std::filesystem::path& exr,
+                  const std::filesystem::path& png);
+
+// "<index>-<name>[-<strategy>]" with every character outside [A-Za-z0-9._-] replaced by '-':
+// a file name per dispatch, unique through the index into dispatches.json ("0-frame-material").
+std::string HeatMapStem(std::size_t index, std::string_view name, std::string_view strategy);
+
+}  // namespace cli

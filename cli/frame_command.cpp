@@ -1,0 +1,250 @@
+// `aasim frame` (see frame_command.h): renders a scene on the machine, runs the post pass under
+// each strategy and writes the output set.
+
+#include "cli/frame_command.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <oneapi/tbb/global_control.h>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli/dispatch_output.h"
+#include "cli/frame_input.h"
+#include "cli/image_io.h"
+#include "cli/output_dir.h"
+#include "cli/text_io.h"
+#include "passes/demo_edge_blend.h"
+#include "raster/sample_pattern.h"
+#include "scenes/scene.h"
+#include "sim/frame.h"
+#include "sim/gpu_config.h"
+
+namespace cli {
+namespace {
+
+// The dispatch the strategies exist for (passes/demo_edge_blend.h names it in both).
+constexpr std::string_view kBlendDispatch = "demo/blend";
+
+struct PassRun {
+  passes::Strategy strategy;
+  passes::DemoEdgeBlendResult result;
+};
+
+// Where two images first differ, and in how many pixels.
+struct ImageDifference {
+  std::size_t pixels = 0;
+  int x = 0, y = 0;
+};
+
+sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::SamplePattern pattern) {
+  sim::FrameSettings settings;
+  settings.width = options.width;
+  settings.height = options.height;
+  settings.eqaa = options.Eqaa();
+  settings.pattern = std::move(pattern);
+  settings.policy = fmask::PolicyByName(options.policy);
+  settings.flush = WaveFlushByName(options.flush);
+  return settings;
+}
+
+nlohmann::ordered_json ConfigurationJson(const FrameCommandOptions& options, int threads) {
+  return {{"scene", options.scene},
+          {"width", options.width},
+          {"height", options.height},
+          {"samples", options.samples},
+          {"depth_samples", options.depthSamples},
+          {"fragments", options.fragments},
+          {"eqaa", fmask::EqaaName(options.Eqaa())},
+          {"pattern", options.pattern},
+          {"policy", options.policy},
+          {"gpu", options.gpu},
+          {"flush", options.flush},
+          {"post", options.post},
+          {"strategy", options.strategy.empty() ? nlohmann::ordered_json(nullptr)
+                                                : nlohmann::ordered_json(options.strategy)},
+          {"threads", threads}};
+}
+
+// Bitwise, so -0 against +0 or two NaN payloads count as different: the strategies promise
+// identical bits, not equal values.
+template <typename T>
+std::optional<ImageDifference> Difference(const sim::Texture2D<T>& a, const sim::Texture2D<T>& b) {
+  ImageDifference difference;
+  for (int y = 0; y < a.Height(); ++y) {
+    for (int x = 0; x < a.Width(); ++x) {
+      if (std::memcmp(&a.At(x, y), &b.At(x, y), sizeof(T)) == 0) continue;
+      if (difference.pixels++ == 0) {
+        difference.x = x;
+        difference.y = y;
+      }
+    }
+  }
+  if (difference.pixels == 0) return std::nullopt;
+  return difference;
+}
+
+std::vector<std::uint8_t> SrgbImage(const sim::Texture2D<glm::vec4>& colour) {
+  std::vector<std::uint8_t> pixels;
+  pixels.reserve(colour.Texels().size() * 3);
+  for (const glm::vec4& texel : colour.Texels()) {
+    pixels.push_back(EncodeSrgb8(texel.r));
+    pixels.push_back(EncodeSrgb8(texel.g));
+    pixels.push_back(EncodeSrgb8(texel.b));
+  }
+  return pixels;
+}
+
+// The edge mask is 0 or 1, so black and white come out exactly.
+std::vector<std::uint8_t> MaskImage(const sim::Texture2D<float>& mask) {
+  std::vector<std::uint8_t> pixels;
+  pixels.reserve(mask.Texels().size());
+  for (const float value : mask.Texels()) pixels.push_back(EncodeSrgb8(value));
+  return pixels;
+}
+
+template <typename T, typename Component>
+std::vector<float> Plane(const sim::Texture2D<T>& texture, Component&& component) {
+  std::vector<float> plane;
+  plane.reserve(texture.Texels().size());
+  for (const T& texel : texture.Texels()) plane.push_back(component(texel));
+  return plane;
+}
+
+void WriteFrameExr(const std::filesystem::path& path, const sim::FramePipeline& pipeline) {
+  const sim::Texture2D<glm::vec4>& colour = pipeline.Colour();
+  const sim::Texture2D<glm::vec4>& normal = pipeline.Normal();
+  const sim::Texture2D<glm::vec2>& velocity = pipeline.Velocity();
+  const std::vector<float> r = Plane(colour, [](const glm::vec4& c) { return c.r; });
+  const std::vector<float> g = Plane(colour, [](const glm::vec4& c) { return c.g; });
+  const std::vector<float> b = Plane(colour, [](const glm::vec4& c) { return c.b; });
+  const std::vector<float> nx = Plane(normal, [](const glm::vec4& n) { return n.x; });
+  const std::vector<float> ny = Plane(normal, [](const glm::vec4& n) { return n.y; });
+  const std::vector<float> nz = Plane(normal, [](const glm::vec4& n) { return n.z; });
+  // Ids up to 2^24 are exact in a float; the background's kNoObject would round, so it is -1.
+  const std::vector<float> objectId = Plane(pipeline.ObjectId(), [](std::uint32_t id) {
+    return id == sim::kNoObject ? -1.0f : static_cast<float>(id);
+  });
+  const std::vector<float> vx = Plane(velocity, [](const glm::vec2& v) { return v.x; });
+  const std::vector<float> vy = Plane(velocity, [](const glm::vec2& v) { return v.y; });
+  const ExrChannel channels[] = {
+      {"R", r},           {"G", g},
+      {"B", b},           {"depth", pipeline.Depth().Texels()},
+      {"normal.X", nx},   {"normal.Y", ny},
+      {"normal.Z", nz},   {"objectId", objectId},
+      {"velocity.X", vx}, {"velocity.Y", vy},
+  };
+  WriteExr(path, colour.Width(), colour.Height(), channels);
+}
+
+void WriteImages(OutputDir& dir, const sim::FramePipeline& pipeline,
+                 const std::vector<PassRun>& passRuns) {
+  const sim::Texture2D<glm::vec4>& colour = pipeline.Colour();
+  WritePng(dir.Stage("colour.png"), colour.Width(), colour.Height(), 3, SrgbImage(colour));
+  WriteFrameExr(dir.Stage("frame.exr"), pipeline);
+  for (const PassRun& run : passRuns) {
+    const std::string folder = "post/" + std::string(passes::StrategyName(run.strategy)) + "/";
+    const sim::Texture2D<glm::vec4>& output = run.result.output;
+    WritePng(dir.Stage(folder + "output.png"), output.Width(), output.Height(), 3,
+             SrgbImage(output));
+    const sim::Texture2D<float>& edges = run.result.edges;
+    WritePng(dir.Stage(folder + "edges.png"), edges.Width(), edges.Height(), 1, MaskImage(edges));
+  }
+}
+
+void WriteReports(OutputDir& dir, const FrameCommandOptions& options, const sim::Machine& machine,
+                  const std::vector<std::string>& strategies, int threads) {
+  const std::vector<sim::DispatchReport>& reports = machine.Reports();
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    if (reports[i].heat.Empty()) continue;
+    const std::string stem = "heat/" + HeatMapStem(i, reports[i].name, strategies[i]);
+    WriteHeatMap(reports[i].heat, dir.Stage(stem + ".exr"), dir.Stage(stem + ".png"));
+  }
+  WriteJson(
+      dir.Stage("dispatches.json"),
+      DispatchReportsJson(reports, machine.Gpu(), ConfigurationJson(options, threads), strategies));
+  WriteText(dir.Stage("dispatches.csv"), DispatchReportsCsv(reports, strategies));
+}
+
+// The study's question side by side: what the blend costs under each strategy.
+void PrintComparison(std::ostream& out, const PassRun& stencil, const PassRun& queue,
+                     const std::optional<ImageDifference>& difference) {
+  out << "\nstencil vs queue: " << kBlendDispatch << " (" << stencil.result.edgePixels
+      << " edge pixels)\n";
+  PrintDispatchComparison(out, kBlendDispatch, passes::StrategyName(stencil.strategy),
+                          stencil.result.dispatches, passes::StrategyName(queue.strategy),
+                          queue.result.dispatches);
+  out << "identical output: ";
+  if (difference) {
+    out << "NO, " << difference->pixels << " pixels differ, first at (" << difference->x << ", "
+        << difference->y << ")\n";
+  } else {
+    out << "yes (output and edge mask bit-identical)\n";
+  }
+}
+
+// Both strategies' images, output then edge mask; nullopt when they match bit for bit.
+std::optional<ImageDifference> CompareStrategies(const PassRun& a, const PassRun& b) {
+  if (auto difference = Difference(a.result.output, b.result.output)) return difference;
+  return Difference(a.result.edges, b.result.edges);
+}
+
+}  // namespace
+
+void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) {
+  const tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism,
+                                        static_cast<std::size_t>(options.threads));
+  const int threads = static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  // Every input is read and checked before the output directory exists, so a bad input leaves
+  // no directory behind.
+  raster::SamplePattern pattern = raster::ResolvePattern(options.pattern, options.samples);
+  sim::Machine machine(sim::GpuConfigByName(options.gpu));
+  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
+  const FrameScene scene = ToFrameScene(scenes::LoadScene(options.scene, aspect), aspect);
+  sim::FramePipeline pipeline(machine, MakeSettings(options, std::move(pattern)));
+  OutputDir dir = OpenOutOption(options.out);
+
+  pipeline.Render(scene.Geometry());
+  // Parallel to machine.Reports(): the frame's dispatches ran under no strategy.
+  std::vector<std::string> strategies(machine.Reports().size());
+  std::vector<PassRun> passRuns;
+  for (const passes::Strategy strategy : options.Strategies()) {
+    passRuns.push_back({strategy, passes::RunDemoEdgeBlend(machine, pipeline.Colour(), strategy)});
+    strategies.resize(machine.Reports().size(), std::string(passes::StrategyName(strategy)));
+  }
+  const std::optional<ImageDifference> difference =
+      passRuns.size() == 2 ? CompareStrategies(passRuns[0], passRuns[1]) : std::nullopt;
+
+  WriteImages(dir, pipeline, passRuns);
+  WriteReports(dir, options, machine, strategies, threads);
+  dir.Commit();
+
+  summary << "frame      " << options.scene << ", " << options.width << "x" << options.height
+          << ", " << fmask::EqaaName(options.Eqaa()) << ", pattern " << options.pattern
+          << ", policy " << options.policy << ", GPU " << machine.Gpu().name << "\n\n";
+  PrintDispatchSummary(summary, machine.Reports(), machine.Gpu(), strategies);
+  if (passRuns.size() == 2) PrintComparison(summary, passRuns[0], passRuns[1], difference);
+  double hostMs = 0.0;
+  for (const sim::DispatchReport& report : machine.Reports()) hostMs += report.hostMilliseconds;
+  summary << "\nhost time  " << std::llround(hostMs) << " ms simulating the dispatches (" << threads
+          << " threads; wall time of this program, not a GPU time)\n"
+          << "report: " << (dir.Path() / "dispatches.json").string() << '\n';
+  if (difference) {
+    throw std::runtime_error("--strategy both: stencil and queue outputs differ in " +
+                             std::to_string(difference->pixels) + " pixels, first at (" +
+                             std::to_string(difference->x) + ", " + std::to_string(difference->y) +
+                             "): a bug in passes/demo_edge_blend (outputs kept in " +
+                             dir.Path().string() + ")");
+  }
+}
+
+}  // namespace cli

@@ -1,0 +1,178 @@
+// Option registry and cross-option checks of `aasim frame` (see frame_options.h).
+
+#include "cli/frame_options.h"
+
+#include <algorithm>
+#include <iterator>
+#include <stdexcept>
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include "cli/common_options.h"
+#include "sim/gpu_config.h"
+
+namespace cli {
+namespace {
+
+struct NamedWaveFlush {
+  std::string_view name;
+  sim::WaveFlush flush;
+};
+constexpr NamedWaveFlush kWaveFlushes[] = {
+    {"mix", sim::WaveFlush::MixPrimitives},
+    {"primitive", sim::WaveFlush::OnePrimitivePerWave},
+};
+
+constexpr std::string_view kPostNone = "none";
+constexpr std::string_view kPostDemo = "demo";
+constexpr std::string_view kBothStrategies = "both";
+constexpr passes::Strategy kStrategies[] = {passes::Strategy::StencilCulled,
+                                            passes::Strategy::DeferredQueue};
+
+std::vector<std::string> StrategyChoices() {
+  std::vector<std::string> choices{std::string(kBothStrategies)};
+  for (const passes::Strategy strategy : kStrategies) {
+    choices.emplace_back(passes::StrategyName(strategy));
+  }
+  return choices;
+}
+
+void AddSurfaceOptions(CLI::App& command, FrameCommandOptions& options) {
+  command.add_option("--samples", options.samples, "Coverage samples per pixel S")
+      ->check(SampleCountCheck())
+      ->capture_default_str();
+  command.add_option("--depth-samples", options.depthSamples, "Anchored depth samples per pixel Z")
+      ->check(DepthSampleCountCheck())
+      ->capture_default_str();
+  command.add_option("--fragments", options.fragments, "Colour fragments per pixel F")
+      ->check(FragmentCountCheck())
+      ->capture_default_str();
+  AddPatternOption(command, options.pattern);
+  command
+      .add_option("--policy", options.policy,
+                  "Fragment arbitration policy when all F slots are taken (docs/eqaa.md)")
+      ->check(CLI::IsMember(fmask::PolicyNames()))
+      ->capture_default_str();
+}
+
+void AddMachineOptions(CLI::App& command, FrameCommandOptions& options) {
+  options.gpu = std::string(sim::kDefaultGpuName);
+  command
+      .add_option("--gpu", options.gpu,
+                  "GPU configuration for occupancy and the timing estimate: a built-in (" +
+                      JoinNames(sim::BuiltinGpuNames()) + ") or a configuration file")
+      ->type_name("NAME|PATH")
+      ->capture_default_str();
+  command
+      .add_option("--flush", options.flush,
+                  "When the pixel-wave packer closes a wave: mix = when 16 quads are in or the "
+                  "bin ends, primitive = also when the primitive changes")
+      ->check(CLI::IsMember(Names(kWaveFlushes)))
+      ->capture_default_str();
+}
+
+void AddPostOptions(CLI::App& command, FrameCommandOptions& options) {
+  command
+      .add_option("--post", options.post,
+                  "Post pass after the frame: demo = luma edge detect + 3x3 blend on edges "
+                  "(passes/demo_edge_blend.h), none = the frame alone")
+      ->check(CLI::IsMember({std::string(kPostNone), std::string(kPostDemo)}))
+      ->capture_default_str();
+  command
+      .add_option("--strategy", options.strategy,
+                  "Dispatch strategy of the post pass: stencil = stencil-culled full-screen "
+                  "pixel shader, queue = deferred queue + indirect compute, both = each, compared "
+                  "[default: both]")
+      ->check(CLI::IsMember(StrategyChoices()));
+}
+
+void AddRunOptions(CLI::App& command, FrameCommandOptions& options) {
+  AddThreadsOption(command, options.threads);
+  command
+      .add_option("--out", options.out,
+                  "Output directory for colour.png, frame.exr, post/, heat/, dispatches.json and "
+                  "dispatches.csv (created if missing)")
+      ->type_name("DIR")
+      ->required();
+}
+
+void CheckMemory(const FrameCommandOptions& options) {
+  const std::uint64_t bytes = EstimateFrameBytes(options.width, options.height, options.Eqaa(),
+                                                 options.Strategies().size());
+  if (bytes > kMaxRunBytes) {
+    throw CLI::ValidationError(
+        "--width " + std::to_string(options.width) + " --height " + std::to_string(options.height) +
+        " --samples " + std::to_string(options.samples) + " --depth-samples " +
+        std::to_string(options.depthSamples) + " --fragments " + std::to_string(options.fragments) +
+        ": needs about " + FormatGiB(bytes) +
+        " GiB (EQAA surfaces, quads, pixel targets, post pass and images), over the " +
+        FormatGiB(kMaxRunBytes) + " GiB limit");
+  }
+}
+
+}  // namespace
+
+std::vector<passes::Strategy> FrameCommandOptions::Strategies() const {
+  if (post == kPostNone) return {};
+  std::vector<passes::Strategy> chosen;
+  for (const passes::Strategy each : kStrategies) {
+    if (strategy == kBothStrategies || strategy == passes::StrategyName(each)) {
+      chosen.push_back(each);
+    }
+  }
+  return chosen;
+}
+
+CLI::App* AddFrameCommand(CLI::App& app, FrameCommandOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "frame",
+      "Render a scene on the modelled GPU (raster, pixel waves, material kernel, EQAA colour), "
+      "run the demo post pass under each dispatch strategy; write images, heat maps and "
+      "per-dispatch reports");
+  // Scripts append overrides to a base command line, so a repeated option means its last value.
+  command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  AddViewportOptions(*command, options.scene, options.width, options.height);
+  AddSurfaceOptions(*command, options);
+  AddMachineOptions(*command, options);
+  AddPostOptions(*command, options);
+  AddRunOptions(*command, options);
+  return command;
+}
+
+void ResolveFrameOptions(FrameCommandOptions& options) {
+  CheckEqaaMode(options.Eqaa());
+  // The strategy only means something to a post pass, so it is refused rather than ignored.
+  if (options.post == kPostNone && !options.strategy.empty()) {
+    throw CLI::ValidationError("--strategy " + options.strategy + " needs --post " +
+                               std::string(kPostDemo));
+  }
+  if (options.strategy.empty() && options.post != kPostNone) {
+    options.strategy = std::string(kBothStrategies);
+  }
+  CheckMemory(options);
+}
+
+std::uint64_t EstimateFrameBytes(int width, int height, const fmask::EqaaConfig& eqaa,
+                                 std::size_t strategies) {
+  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+  // Resolved colour, depth, normal, object id, velocity; one shaded colour per quad pixel.
+  const std::uint64_t targets = 2 * sizeof(glm::vec4) + sizeof(float) + sizeof(std::uint32_t) +
+                                sizeof(glm::vec2) + sizeof(fmask::Colour);
+  const std::uint64_t images = 10 * sizeof(float) + 3;  // frame.exr's channels, colour.png
+  // Blended colour, edge mask, stencil byte, queue entry; output.png and edges.png.
+  const std::uint64_t pass = sizeof(glm::vec4) + sizeof(float) + 1 + sizeof(std::uint32_t) + 4;
+  const std::uint64_t perPixel =
+      SurfaceBytesPerPixel(eqaa.coverageSamples, eqaa.depthSamples, eqaa.fragments) + targets +
+      images + strategies * pass;
+  return pixels * perPixel;
+}
+
+sim::WaveFlush WaveFlushByName(std::string_view name) {
+  const auto* found = std::find_if(std::begin(kWaveFlushes), std::end(kWaveFlushes),
+                                   [&](const NamedWaveFlush& entry) { return entry.name == name; });
+  if (found == std::end(kWaveFlushes)) throw std::invalid_argument("unknown wave flush");
+  return found->flush;
+}
+
+}  // namespace cli

@@ -1,0 +1,55 @@
+#pragma once
+// The options of `aasim frame`: one registry (name, default, legal range, help) from which
+// CLI11 builds --help and checks single values, plus the checks between options. Every rule
+// runs before any work; violations are CLI::ValidationError (exit 2).
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "fmask/eqaa_surface.h"
+#include "passes/demo_edge_blend.h"
+#include "sim/wave.h"
+
+namespace cli {
+
+struct FrameCommandOptions {
+  std::string scene;  // "builtin:NAME" or a glTF path; default set by AddFrameCommand
+  int width = 1920;
+  int height = 1080;
+  int samples = 8;
+  int depthSamples = 4;
+  int fragments = 2;
+  // radeonsi's EQAA order, the positions the hardware uses with these surfaces (hw-facts §4.3).
+  std::string pattern = "eqaa";
+  std::string policy = "hraa";
+  std::string gpu;  // name or file; default set by AddFrameCommand: sim::kDefaultGpuName
+  std::string flush = "mix";
+  std::string post = "demo";
+  std::string strategy;  // empty until ResolveFrameOptions: "both" with --post demo
+  int threads = 0;       // default set by AddFrameCommand: every core
+  std::string out;
+
+  fmask::EqaaConfig Eqaa() const { return {samples, depthSamples, fragments}; }
+  // The strategies the post pass runs under, in run order; empty with --post none.
+  std::vector<passes::Strategy> Strategies() const;
+};
+
+// Registers the `frame` subcommand on `app`, bound to `options`.
+CLI::App* AddFrameCommand(CLI::App& app, FrameCommandOptions& options);
+
+// Fills defaults that depend on other options and checks the rules between options.
+void ResolveFrameOptions(FrameCommandOptions& options);
+
+// Bytes held at once: the EQAA depth and colour surfaces with one layer of quads, the
+// pipeline's pixel targets and shaded quad colours, the frame's output images, and per
+// strategy the pass's output, edge mask, stencil, queue and previews.
+std::uint64_t EstimateFrameBytes(int width, int height, const fmask::EqaaConfig& eqaa,
+                                 std::size_t strategies);
+
+sim::WaveFlush WaveFlushByName(std::string_view name);
+
+}  // namespace cli

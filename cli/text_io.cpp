@@ -1,0 +1,26 @@
+// Text outputs (see text_io.h).
+
+#include "cli/text_io.h"
+
+#include <fstream>
+
+#include "cli/output_error.h"
+
+namespace cli {
+
+void WriteJson(const std::filesystem::path& path, const nlohmann::ordered_json& json) {
+  std::ofstream file(path);
+  file << json.dump(2) << '\n';
+  // Buffered write errors (a full disk) only surface at close.
+  file.close();
+  if (!file) throw OutputError(path.string() + ": cannot write JSON");
+}
+
+void WriteText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream file(path);
+  file << text;
+  file.close();
+  if (!file) throw OutputError(path.string() + ": cannot write text");
+}
+
+}  // namespace cli

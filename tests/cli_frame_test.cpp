@@ -1,0 +1,597 @@
+// `aasim frame` end to end: a small run writes every listed output, its dispatch report is
+// consistent (lanes add up, one CSV row per dispatch, both strategies' images identical, the
+// same counters with 1 and 2 threads), and every bad input fails with one stderr line and no
+// output directory. Also the in-process writers on hand-built reports (JSON schema, CSV quoting,
+// summary table, heat maps) and the frame inputs built from a scene.
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <ostream>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <stb_image.h>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli/dispatch_output.h"
+#include "cli/frame_input.h"
+#include "cli/frame_options.h"
+#include "cli_test_util.h"
+#include "fmask/eqaa_surface.h"
+#include "raster/counters.h"
+#include "sim/counters.h"
+#include "sim/dispatch.h"
+#include "sim/frame.h"
+#include "sim/gpu_config.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using cli::testing::CommandResult;
+using cli::testing::ExrChannelNames;
+using cli::testing::FilesIn;
+using cli::testing::ReadExrChannels;
+using cli::testing::ReadText;
+using cli::testing::RunAasim;
+using cli::testing::WriteFile;
+
+std::vector<std::string> SmallRun(const fs::path& out, const std::string& threads = "2") {
+  return {"frame", "--scene",   "builtin:default", "--width", "320",       "--height",
+          "180",   "--threads", threads,           "--out",   out.string()};
+}
+
+// Splits CSV text into rows of fields, honouring quoted fields with doubled quotes.
+std::vector<std::vector<std::string>> ParseCsv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> row;
+  std::string field;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      row.push_back(field);
+      field.clear();
+    } else if (c == '\n') {
+      row.push_back(field);
+      rows.push_back(row);
+      row.clear();
+      field.clear();
+    } else {
+      field += c;
+    }
+  }
+  return rows;
+}
+
+std::vector<std::string> LaneCounterNames() {
+  std::vector<std::string> names;
+  for (const sim::LaneCounterField& field : sim::kLaneCounterFields) names.emplace_back(field.name);
+  return names;
+}
+
+// One run shared by the tests that only read its outputs.
+class CliFrameTest : public cli::testing::ScratchDirTest {
+ protected:
+  static void SetUpTestSuite() {
+    runDir_ = fs::temp_directory_path() / ("aasim_cli_frame_run_" + std::to_string(::getpid()));
+    fs::remove_all(runDir_);
+    fs::create_directories(runDir_);
+    run_ = RunAasim(SmallRun(runDir_ / "out"), runDir_);
+  }
+  static void TearDownTestSuite() { fs::remove_all(runDir_); }
+
+  static fs::path Out() { return runDir_ / "out"; }
+  static nlohmann::ordered_json Report() {
+    return nlohmann::ordered_json::parse(ReadText(Out() / "dispatches.json"));
+  }
+
+  static inline fs::path runDir_;
+  static inline CommandResult run_;
+};
+
+TEST_F(CliFrameTest, SmallRunWritesEveryOutput) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  EXPECT_EQ(run_.err, "");
+  EXPECT_EQ(FilesIn(Out()),
+            (std::vector<std::string>{"colour.png", "dispatches.csv", "dispatches.json",
+                                      "frame.exr", "heat", "post"}));
+  EXPECT_EQ(FilesIn(Out() / "post"), (std::vector<std::string>{"queue", "stencil"}));
+  for (const char* strategy : {"queue", "stencil"}) {
+    EXPECT_EQ(FilesIn(Out() / "post" / strategy),
+              (std::vector<std::string>{"edges.png", "output.png"}));
+  }
+  int width = 0, height = 0, channels = 0;
+  ASSERT_TRUE(stbi_info((Out() / "colour.png").c_str(), &width, &height, &channels));
+  EXPECT_EQ(width, 320);
+  EXPECT_EQ(height, 180);
+  EXPECT_EQ(channels, 3);
+  ASSERT_TRUE(stbi_info((Out() / "post/queue/edges.png").c_str(), &width, &height, &channels));
+  EXPECT_EQ(channels, 1);
+  // OpenEXR lists channels sorted by name.
+  EXPECT_EQ(ExrChannelNames(Out() / "frame.exr"),
+            (std::vector<std::string>{"B", "G", "R", "depth", "normal.X", "normal.Y", "normal.Z",
+                                      "objectId", "velocity.X", "velocity.Y"}));
+  const std::map<std::string, std::vector<float>> frame = ReadExrChannels(Out() / "frame.exr");
+  EXPECT_EQ(frame.at("depth").size(), 320u * 180u);
+  EXPECT_TRUE(std::any_of(frame.at("objectId").begin(), frame.at("objectId").end(),
+                          [](float id) { return id >= 0.0f; }));
+  EXPECT_TRUE(std::all_of(frame.at("velocity.X").begin(), frame.at("velocity.X").end(),
+                          [](float v) { return v == 0.0f; }));  // a still frame
+}
+
+TEST_F(CliFrameTest, StdoutHasTheTableTheComparisonAndTheReportPath) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  EXPECT_NE(run_.out.find("estimated from the GPU configuration '" +
+                          std::string(sim::kDefaultGpuName) + "'"),
+            std::string::npos)
+      << run_.out;
+  EXPECT_NE(run_.out.find("stencil vs queue"), std::string::npos) << run_.out;
+  EXPECT_NE(run_.out.find("estimated µs"), std::string::npos) << run_.out;
+  EXPECT_NE(run_.out.find("identical output: yes"), std::string::npos) << run_.out;
+  EXPECT_NE(run_.out.find("report: " + (Out() / "dispatches.json").string() + "\n"),
+            std::string::npos)
+      << run_.out;
+}
+
+TEST_F(CliFrameTest, JsonHasTheSchemaEveryDispatchAndLanesThatAddUp) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  const nlohmann::ordered_json json = Report();
+  EXPECT_EQ(json["schema"], cli::kDispatchesSchema);
+  EXPECT_EQ(json["version"], cli::kDispatchesVersion);
+  EXPECT_EQ(json["configuration"]["width"], 320);
+  EXPECT_EQ(json["configuration"]["strategy"], "both");
+  EXPECT_EQ(json["configuration"]["threads"], 2);
+  std::vector<std::string> dispatches;
+  for (const auto& dispatch : json["dispatches"]) {
+    const std::string strategy = dispatch["strategy"].is_null() ? "" : dispatch["strategy"];
+    dispatches.push_back(dispatch["name"].get<std::string>() + (strategy.empty() ? "" : "@") +
+                         strategy);
+    std::vector<std::string> keys;
+    for (const auto& [key, value] : dispatch["counters"].items()) keys.push_back(key);
+    EXPECT_EQ(keys, LaneCounterNames());
+    const auto& c = dispatch["counters"];
+    const std::uint64_t launched = c["lanes/launched"];
+    EXPECT_EQ(launched, c["lanes/active"].get<std::uint64_t>() +
+                            c["lanes/helper"].get<std::uint64_t>() +
+                            c["lanes/dead_stencil"].get<std::uint64_t>() +
+                            c["lanes/dead_empty"].get<std::uint64_t>())
+        << dispatch["name"];
+    EXPECT_EQ(launched, 64 * c["waves/launched"].get<std::uint64_t>()) << dispatch["name"];
+    EXPECT_TRUE(dispatch["time_estimate_us"]["total"].is_number());
+  }
+  EXPECT_EQ(dispatches, (std::vector<std::string>{"frame/material", "demo/edge-detect@stencil",
+                                                  "demo/blend@stencil", "demo/edge-detect@queue",
+                                                  "demo/queue-args@queue", "demo/blend@queue"}));
+  EXPECT_TRUE(json["dispatches"][0].contains("raster"));
+  EXPECT_TRUE(json["dispatches"][0].contains("fragments"));
+  EXPECT_GT(json["dispatches"][0]["counters"]["lanes/active"].get<std::uint64_t>(), 0u);
+}
+
+TEST_F(CliFrameTest, GpuBlockReadsBackAsAGpuFile) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  nlohmann::ordered_json gpu = Report()["gpu"];
+  EXPECT_EQ(gpu["source"], "built-in");
+  gpu.erase("source");
+  // ParseGpuConfig wants every key of GpuConfig and no other, so this fails when the block
+  // misses a field.
+  const sim::GpuConfig parsed = sim::ParseGpuConfig(gpu.dump(), "dispatches.json gpu");
+  const sim::GpuConfig builtin = sim::GpuConfigByName(sim::kDefaultGpuName);
+  EXPECT_EQ(parsed.name, builtin.name);
+  EXPECT_EQ(parsed.computeUnits, builtin.computeUnits);
+  EXPECT_EQ(parsed.clockMhz, builtin.clockMhz);
+}
+
+TEST_F(CliFrameTest, CsvHasOneRowPerDispatchAndEqualColumnCounts) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  const std::vector<std::vector<std::string>> rows = ParseCsv(ReadText(Out() / "dispatches.csv"));
+  ASSERT_EQ(rows.size(), Report()["dispatches"].size() + 1);
+  for (const std::vector<std::string>& row : rows) EXPECT_EQ(row.size(), rows[0].size());
+  EXPECT_EQ(rows[0][0], "name");
+  EXPECT_EQ(rows[1][0], "frame/material");
+  EXPECT_EQ(rows.back()[2], "queue");
+}
+
+TEST_F(CliFrameTest, BothStrategiesWriteIdenticalImages) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  for (const char* image : {"output.png", "edges.png"}) {
+    const std::string stencil = ReadText(Out() / "post/stencil" / image);
+    EXPECT_FALSE(stencil.empty());
+    EXPECT_EQ(stencil, ReadText(Out() / "post/queue" / image)) << image;
+  }
+}
+
+TEST_F(CliFrameTest, EveryDispatchWithAHeatMapHasBothFiles) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  const std::vector<std::string> heat = FilesIn(Out() / "heat");
+  EXPECT_TRUE(std::find(heat.begin(), heat.end(), "0-frame-material.exr") != heat.end());
+  EXPECT_TRUE(std::find(heat.begin(), heat.end(), "2-demo-blend-stencil.png") != heat.end());
+  for (const std::string& name : heat) {
+    const fs::path path(name);
+    const std::string other = path.stem().string() + (path.extension() == ".exr" ? ".png" : ".exr");
+    EXPECT_TRUE(std::find(heat.begin(), heat.end(), other) != heat.end()) << name;
+  }
+  // A tile's lanes are at most the 64 of its pixels, per kind and in total.
+  const std::map<std::string, std::vector<float>> exr =
+      ReadExrChannels(Out() / "heat/0-frame-material.exr");
+  EXPECT_EQ(exr.at("launched").size(), 40u * 23u);  // 320x180 in 8x8 tiles
+  for (std::size_t tile = 0; tile < exr.at("launched").size(); ++tile) {
+    EXPECT_EQ(exr.at("launched")[tile],
+              exr.at("active")[tile] + exr.at("helper")[tile] + exr.at("dead")[tile]);
+  }
+}
+
+TEST_F(CliFrameTest, CountersAreTheSameWithOneThread) {
+  ASSERT_EQ(run_.exitCode, 0) << run_.err;
+  const CommandResult one = RunAasim(SmallRun(scratch_ / "one", "1"), scratch_);
+  ASSERT_EQ(one.exitCode, 0) << one.err;
+  EXPECT_EQ(ReadText(scratch_ / "one/dispatches.csv"), ReadText(Out() / "dispatches.csv"));
+  EXPECT_EQ(ReadText(scratch_ / "one/colour.png"), ReadText(Out() / "colour.png"));
+}
+
+TEST_F(CliFrameTest, OneStrategyAndNoPostRunOnlyWhatWasAskedFor) {
+  std::vector<std::string> args = SmallRun(scratch_ / "queue");
+  args.insert(args.end(), {"--strategy", "queue"});
+  const CommandResult queue = RunAasim(args, scratch_);
+  ASSERT_EQ(queue.exitCode, 0) << queue.err;
+  EXPECT_EQ(FilesIn(scratch_ / "queue/post"), std::vector<std::string>{"queue"});
+  EXPECT_EQ(queue.out.find("stencil vs queue"), std::string::npos);
+
+  args = SmallRun(scratch_ / "none");
+  args.insert(args.end(), {"--post", "none"});
+  const CommandResult none = RunAasim(args, scratch_);
+  ASSERT_EQ(none.exitCode, 0) << none.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "none/post"));
+  const nlohmann::json json = nlohmann::json::parse(ReadText(scratch_ / "none/dispatches.json"));
+  EXPECT_EQ(json["dispatches"].size(), 1u);
+}
+
+TEST_F(CliFrameTest, HelpExplainsEveryOption) {
+  const CommandResult run = RunAasim({"frame", "--help"}, scratch_);
+  EXPECT_EQ(run.exitCode, 0);
+  for (const char* option : {"--scene", "--width", "--height", "--samples", "--depth-samples",
+                             "--fragments", "--pattern", "--policy", "--gpu", "--flush", "--post",
+                             "--strategy", "--threads", "--out"}) {
+    EXPECT_NE(run.out.find(option), std::string::npos) << option;
+  }
+  for (const std::string& gpu : sim::BuiltinGpuNames()) {
+    EXPECT_NE(run.out.find(gpu), std::string::npos) << gpu;
+  }
+}
+
+// --- Every bad input: exit code, one stderr line naming the input, no output directory. ---
+
+struct BadInput {
+  std::string name;
+  // Extra arguments after `frame --width 64 --height 48 --out DIR`.
+  std::function<std::vector<std::string>(const fs::path& scratch)> args;
+  std::string named;   // stderr must name the input...
+  std::string reason;  // ...and say this about it
+  int exitCode;
+};
+
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
+std::vector<BadInput> BadInputs() {
+  const auto fixed = [](std::vector<std::string> args) {
+    return [args](const fs::path&) { return args; };
+  };
+  return {
+      {"UnknownGpu", fixed({"--gpu", "nosuch"}), "nosuch", std::string(sim::kDefaultGpuName), 1},
+      {"FragmentsNotAPowerOfTwo", fixed({"--fragments", "3"}), "--fragments", "not in {1,2,4,8}",
+       2},
+      {"EqaaModeIllegal", fixed({"--samples", "4", "--depth-samples", "4", "--fragments", "8"}),
+       "4S/4Z/8F", "8S/4Z/2F", 2},
+      {"UnknownStrategy", fixed({"--strategy", "foo"}), "--strategy", "foo not in", 2},
+      {"StrategyWithoutPost", fixed({"--post", "none", "--strategy", "queue"}), "--strategy queue",
+       "needs --post demo", 2},
+      {"UnknownFlush", fixed({"--flush", "sometimes"}), "--flush", "not in", 2},
+      {"WidthZero", fixed({"--width", "0"}), "--width", "not in range 1 to 16384", 2},
+      {"OverMemoryLimit",
+       fixed({"--width", "16384", "--height", "16384", "--samples", "16", "--depth-samples", "8"}),
+       "--width 16384", "4.0 GiB limit", 2},
+      {"UnknownPattern", fixed({"--pattern", "nosuch"}), "nosuch", "unknown sample pattern", 1},
+      {"UnknownScene", fixed({"--scene", "builtin:nosuch"}), "builtin:nosuch", "unknown", 1},
+      {"OutUnderARegularFile",
+       [](const fs::path& scratch) -> std::vector<std::string> {
+         WriteFile(scratch / "somefile", "x");
+         return {"--out", (scratch / "somefile" / "out").string()};
+       },
+       "--out", "cannot create directory: Not a directory", 1},
+  };
+}
+
+class CliFrameBadInputTest : public cli::testing::ScratchDirTest,
+                             public ::testing::WithParamInterface<BadInput> {};
+
+TEST_P(CliFrameBadInputTest, FailsWithOneLineNamingTheInputAndCreatesNothing) {
+  const BadInput& input = GetParam();
+  const fs::path out = scratch_ / "out";
+  std::vector<std::string> args{"frame", "--width", "64", "--height", "48", "--out", out.string()};
+  const std::vector<std::string> extra = input.args(scratch_);
+  args.insert(args.end(), extra.begin(), extra.end());
+
+  const CommandResult run = RunAasim(args, scratch_);
+  EXPECT_EQ(run.exitCode, input.exitCode) << run.err;
+  ASSERT_FALSE(run.err.empty());
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_EQ(run.err.back(), '\n');
+  EXPECT_NE(run.err.find(input.named), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(input.reason), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.rfind(input.exitCode == 2 ? "aasim frame: " : "aasim: ", 0), 0u) << run.err;
+  EXPECT_FALSE(fs::exists(out)) << run.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(CliFrame, CliFrameBadInputTest, ::testing::ValuesIn(BadInputs()),
+                         [](const auto& param) { return param.param.name; });
+
+TEST_F(CliFrameTest, MissingOutIsRefused) {
+  const CommandResult run = RunAasim({"frame", "--width", "64"}, scratch_);
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(run.err, "aasim frame: --out is required\n");
+}
+
+// --- The writers on a hand-built report. ---
+
+sim::DispatchReport HandBuiltReport() {
+  sim::DispatchReport report;
+  report.name = "test/a,b \"quoted\"";
+  report.kind = sim::DispatchKind::Compute;
+  report.kernel = {
+      .vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 400, .valuInstructionsPerWave = 12.5};
+  report.groupSize = {8, 8, 1};
+  report.groupCount = {3, 2, 1};
+  report.lanes.waves = 6;
+  report.lanes.groups = 6;
+  report.lanes.lanesLaunched = 384;
+  report.lanes.lanesActive = 300;
+  report.lanes.lanesDeadEmpty = 84;
+  report.lanes.wavesByActiveLanes[50] = 6;
+  sim::ResourceTraffic colour{
+      .name = "colour", .access = "read", .bytesRead = 1200, .fetches = 300, .linesRead = 20};
+  sim::ResourceTraffic queue{
+      .name = "queue", .access = "append", .bytesWritten = 40, .atomics = 10, .linesWritten = 1};
+  report.resources = {colour, queue};
+  report.occupancy = {.wavesPerSimd = 8,
+                      .maxWavesPerSimd = 10,
+                      .limiter = sim::OccupancyLimiter::Vgpr,
+                      .byVgpr = 8,
+                      .bySgpr = 10,
+                      .byLds = 10,
+                      .byGroups = 10,
+                      .wavesPerGroup = 1,
+                      .vgprsAllocated = 24,
+                      .sgprsAllocated = 16,
+                      .ldsBytesAllocated = 512};
+  report.time = {.aluMicroseconds = 0.25,
+                 .memoryMicroseconds = 0.5,
+                 .launchMicroseconds = 0.125,
+                 .rasterMicroseconds = 0.0,
+                 .overheadMicroseconds = 1.0,
+                 .totalMicroseconds = 1.5,
+                 .bound = "memory"};
+  report.raster = raster::RasterCounters{};
+  report.raster->trianglesIn = 7;
+  return report;
+}
+
+TEST(CliFrameDispatchOutput, JsonFollowsTheSchemaAndTheFieldTables) {
+  const sim::DispatchReport report = HandBuiltReport();
+  const sim::GpuConfig gpu = sim::GpuConfigByName(sim::kDefaultGpuName);
+  const std::vector<std::string> strategies{"queue"};
+  const nlohmann::ordered_json json =
+      cli::DispatchReportsJson(std::span(&report, 1), gpu, {{"scene", "hand-built"}}, strategies);
+  EXPECT_EQ(json["schema"], "aasim.dispatches");
+  EXPECT_EQ(json["version"], 1);
+  EXPECT_EQ(json["gpu"]["name"], gpu.name);
+  EXPECT_EQ(json["timing_model"], "estimate: see docs/timing-model.md");
+  EXPECT_EQ(json["configuration"]["scene"], "hand-built");
+  ASSERT_EQ(json["dispatches"].size(), 1u);
+  const nlohmann::ordered_json& d = json["dispatches"][0];
+  EXPECT_EQ(d["name"], report.name);
+  EXPECT_EQ(d["kind"], "compute");
+  EXPECT_EQ(d["strategy"], "queue");
+  EXPECT_EQ(d["kernel"]["lds_bytes_per_group"], 400);
+  EXPECT_EQ(d["kernel"]["valu_instructions_per_wave_estimate"], 12.5);
+  EXPECT_EQ(d["group_size"], nlohmann::ordered_json({8, 8, 1}));
+  EXPECT_EQ(d["group_count"], nlohmann::ordered_json({3, 2, 1}));
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : d["counters"].items()) keys.push_back(key);
+  EXPECT_EQ(keys, LaneCounterNames());
+  EXPECT_EQ(d["counters"]["lanes/dead_empty"], 84);
+  EXPECT_EQ(d["histograms"][sim::kWavesByActiveLanes].size(), 65u);
+  EXPECT_EQ(d["histograms"][sim::kWavesByActiveLanes][50], 6);
+  EXPECT_EQ(d["histograms"][sim::kQuadsByLivePixels].size(), 5u);
+  EXPECT_EQ(d["histograms"][sim::kWavesByPrimitives].size(), 17u);
+  ASSERT_EQ(d["resources"].size(), 2u);
+  EXPECT_EQ(d["resources"][0]["name"], "colour");
+  EXPECT_EQ(d["resources"][0]["dram_bytes"], 20 * 64);
+  EXPECT_EQ(d["resources"][1]["atomics"], 10);
+  EXPECT_EQ(d["occupancy"]["waves_per_simd"], 8);
+  EXPECT_EQ(d["occupancy"]["limiter"], sim::LimiterName(sim::OccupancyLimiter::Vgpr));
+  EXPECT_EQ(d["occupancy"]["lds_bytes_allocated"], 512);
+  EXPECT_EQ(d["time_estimate_us"]["total"], 1.5);
+  EXPECT_EQ(d["time_estimate_us"]["bound"], "memory");
+  ASSERT_TRUE(d.contains("raster"));
+  EXPECT_EQ(d["raster"].size(), std::size(raster::kRasterCounterFields));
+  EXPECT_EQ(d["raster"]["triangles/in"], 7);
+  EXPECT_FALSE(d.contains("fragments"));
+
+  const std::vector<std::string> tooMany{"queue", "stencil"};
+  EXPECT_THROW(cli::DispatchReportsJson(std::span(&report, 1), gpu, {}, tooMany),
+               std::invalid_argument);
+}
+
+TEST(CliFrameDispatchOutput, CsvQuotesOnlyWhatNeedsIt) {
+  EXPECT_EQ(cli::CsvField("plain"), "plain");
+  EXPECT_EQ(cli::CsvField("full-screen PS"), "full-screen PS");
+  EXPECT_EQ(cli::CsvField("a,b"), "\"a,b\"");
+  EXPECT_EQ(cli::CsvField("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(cli::CsvField("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(cli::CsvField(""), "");
+}
+
+TEST(CliFrameDispatchOutput, CsvRowsMatchTheHeader) {
+  const sim::DispatchReport report = HandBuiltReport();
+  const std::vector<std::vector<std::string>> rows =
+      ParseCsv(cli::DispatchReportsCsv(std::span(&report, 1)));
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[0].size(), rows[1].size());
+  std::map<std::string, std::string> row;
+  for (std::size_t c = 0; c < rows[0].size(); ++c) row[rows[0][c]] = rows[1][c];
+  EXPECT_EQ(row["name"], report.name);  // the comma and quotes survive the round trip
+  EXPECT_EQ(row["kind"], "compute");
+  EXPECT_EQ(row["strategy"], "");
+  for (const std::string& name : LaneCounterNames()) EXPECT_EQ(row.count(name), 1u) << name;
+  EXPECT_EQ(row["lanes/active"], "300");
+  EXPECT_EQ(row["bytes_read"], "1200");
+  EXPECT_EQ(row["bytes_written"], "40");
+  EXPECT_EQ(row["dram_bytes"], std::to_string(21 * 64));
+  EXPECT_EQ(row["occupancy_waves_per_simd"], "8");
+  EXPECT_EQ(row["occupancy_limiter"], sim::LimiterName(sim::OccupancyLimiter::Vgpr));
+  EXPECT_EQ(row["estimate_total_us"], "1.5");
+  EXPECT_EQ(row["estimate_bound"], "memory");
+  EXPECT_EQ(rows[0].front(), "name");
+  EXPECT_EQ(rows[0].back(), "estimate_bound");
+}
+
+TEST(CliFrameDispatchOutput, SummaryNamesTheGpuAndAlignsItsColumns) {
+  sim::DispatchReport other = HandBuiltReport();
+  other.name = "x";
+  other.lanes.waves = 123456;
+  const std::vector<sim::DispatchReport> reports{HandBuiltReport(), other};
+  const std::vector<std::string> strategies{"stencil", ""};
+  sim::GpuConfig gpu;
+  gpu.name = "test-gpu";
+  std::ostringstream out;
+  cli::PrintDispatchSummary(out, reports, gpu, strategies);
+  std::vector<std::string> lines;
+  std::istringstream in(out.str());
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u) << out.str();
+  EXPECT_NE(lines[0].find("estimated from the GPU configuration 'test-gpu'"), std::string::npos);
+  EXPECT_EQ(lines[1].rfind("dispatch", 0), 0u);
+  EXPECT_NE(lines[2].find("[stencil]"), std::string::npos);
+  EXPECT_NE(lines[2].find("8/10 (VGPR)"), std::string::npos) << lines[2];
+  EXPECT_NE(lines[2].find("78.1"), std::string::npos) << lines[2];  // 300 of 384 lanes active
+  // Right-aligned numbers: the waves column ends at the same place in every row.
+  const std::size_t wavesEnd = lines[1].find("waves") + 5;
+  EXPECT_EQ(lines[3].find("123456") + 6, wavesEnd) << out.str();
+  EXPECT_EQ(lines[2].find(" 6 ") + 2, wavesEnd) << out.str();
+}
+
+class CliFrameHeatMapTest : public cli::testing::ScratchDirTest {};
+
+TEST_F(CliFrameHeatMapTest, ExrHasLaneCountsAndPngShowsUtilization) {
+  sim::TileHeatMap heat(24, 8);  // three tiles in a row
+  for (int i = 0; i < 48; ++i) heat.Add(i % 8, i / 8, sim::LaneKind::Active);
+  for (int i = 0; i < 16; ++i) heat.Add(i % 8, 6 + i / 8, sim::LaneKind::Helper);
+  heat.Add(8, 0, sim::LaneKind::DeadStencil);  // tile 1: launched, nothing active
+  cli::WriteHeatMap(heat, scratch_ / "h.exr", scratch_ / "h.png");
+
+  const std::map<std::string, std::vector<float>> exr = ReadExrChannels(scratch_ / "h.exr");
+  EXPECT_EQ(exr.at("active"), (std::vector<float>{48, 0, 0}));
+  EXPECT_EQ(exr.at("helper"), (std::vector<float>{16, 0, 0}));
+  EXPECT_EQ(exr.at("dead"), (std::vector<float>{0, 1, 0}));
+  EXPECT_EQ(exr.at("launched"), (std::vector<float>{64, 1, 0}));
+  EXPECT_EQ(exr.at("utilization"), (std::vector<float>{0.75f, 0, 0}));
+
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* png = stbi_load((scratch_ / "h.png").c_str(), &width, &height, &channels, 3);
+  ASSERT_NE(png, nullptr);
+  EXPECT_EQ(width, 12);
+  EXPECT_EQ(height, 4);
+  const auto pixel = [&](int x, int y) {
+    const stbi_uc* p = png + (y * width + x) * 3;
+    return std::vector<int>{p[0], p[1], p[2]};
+  };
+  EXPECT_EQ(pixel(0, 0), pixel(3, 3));         // nearest-neighbour 4x
+  EXPECT_GT(pixel(0, 0)[0], pixel(4, 0)[0]);   // 75% is yellower than 0%
+  EXPECT_GT(pixel(4, 0)[2], pixel(4, 0)[0]);   // 0% is blue
+  const std::vector<int> empty = pixel(8, 0);  // no lanes: grey
+  EXPECT_EQ(empty[0], empty[1]);
+  EXPECT_EQ(empty[1], empty[2]);
+  stbi_image_free(png);
+
+  EXPECT_THROW(cli::WriteHeatMap(sim::TileHeatMap(), scratch_ / "e.exr", scratch_ / "e.png"),
+               std::invalid_argument);
+}
+
+TEST(CliFrameDispatchOutput, HeatMapStemsAreFileNamesInRunOrder) {
+  EXPECT_EQ(cli::HeatMapStem(0, "frame/material", ""), "0-frame-material");
+  EXPECT_EQ(cli::HeatMapStem(4, "demo/blend", "queue"), "4-demo-blend-queue");
+  EXPECT_EQ(cli::HeatMapStem(12, "a b:c\\d", ""), "12-a-b-c-d");
+}
+
+// --- Frame inputs from a scene (cli/frame_input.h). ---
+
+TEST(CliFrameInput, SmoothNormalsAreAreaWeightedAndNeverZero) {
+  // A flat quad in z = 0, counter-clockwise seen from +z, and one unused vertex.
+  const std::vector<glm::vec3> flat{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {5, 5, 5}};
+  const std::vector<glm::vec3> normals =
+      cli::SmoothNormals(flat, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
+  for (const glm::vec3& n : normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+
+  // A roof: a big face tilted towards +x and a small one towards -y share edge 0-1; their shared
+  // vertices lean towards the big face.
+  const std::vector<glm::vec3> roof{{0, 0, 0}, {0, 0, 1}, {4, 0, 0}, {0, -1, 0}};
+  const std::vector<glm::vec3> leaning =
+      cli::SmoothNormals(roof, std::vector<std::uint32_t>{0, 2, 1, 0, 1, 3});
+  EXPECT_NEAR(glm::length(leaning[0]), 1.0f, 1e-6f);
+  EXPECT_GT(std::abs(leaning[0].y), std::abs(leaning[0].x));
+}
+
+TEST(CliFrameInput, ObjectIdsAreMeshIndicesAndColoursComeFromThePalette) {
+  scenes::Scene scene;
+  scene.name = "two meshes";
+  scenes::Mesh withNormals{.name = "a",
+                           .positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                           .normals = {{0, 0, -1}, {0, 0, -1}, {0, 0, -1}},
+                           .indices = {0, 1, 2}};
+  scenes::Mesh without{.name = "b",
+                       .positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}},
+                       .normals = {},
+                       .indices = {0, 1, 2, 1, 3, 2}};
+  scene.meshes = {withNormals, without};
+  const cli::FrameScene frame = cli::ToFrameScene(scene, 1.0f);
+  EXPECT_EQ(frame.objectIds, (std::vector<std::uint32_t>{0, 1, 1}));
+  EXPECT_EQ(frame.baseColours,
+            (std::vector<glm::vec3>{cli::kMeshPalette[0], cli::kMeshPalette[1]}));
+  ASSERT_EQ(frame.normals.size(), 7u);
+  EXPECT_EQ(frame.normals[0], glm::vec3(0, 0, -1));  // the mesh's own normals are kept
+  EXPECT_EQ(frame.normals[3], glm::vec3(0, 0, 1));   // computed ones face the front
+  const sim::FrameGeometry geometry = frame.Geometry();
+  EXPECT_EQ(geometry.clipPositions.size(), 7u);
+  EXPECT_TRUE(geometry.previousClipPositions.empty());
+  EXPECT_EQ(geometry.indices.size(), 9u);
+}
+
+TEST(CliFrameOptions, EveryStrategyCountsInTheMemoryEstimate) {
+  const fmask::EqaaConfig eqaa{8, 4, 2};
+  EXPECT_LT(cli::EstimateFrameBytes(64, 48, eqaa, 1), cli::EstimateFrameBytes(64, 48, eqaa, 2));
+  EXPECT_LT(cli::EstimateFrameBytes(64, 48, eqaa, 0), cli::EstimateFrameBytes(128, 48, eqaa, 0));
+}
+
+}  // namespace

@@ -1,0 +1,126 @@
+#pragma once
+// Shared helpers for the command-line tests: a per-test scratch directory, running the built
+// `aasim` binary with its stdout and stderr captured, and reading back the files it wrote
+// (text, directory listings, EXR channels by name).
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
+namespace cli::testing {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string ReadText(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+inline fs::path WriteFile(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// Appended piecewise: GCC 12 flags `" " + string` with a false -Wrestrict.
+inline void AppendQuoted(std::string& command, std::string_view prefix, const std::string& arg) {
+  command += prefix;
+  command += '\'';
+  command += arg;
+  command += '\'';
+}
+
+// Runs the built binary through the shell with stdout and stderr captured in `scratch`.
+inline CommandResult RunAasim(const std::vector<std::string>& args, const fs::path& scratch) {
+  std::string command;
+  AppendQuoted(command, "", AASIM_BINARY);
+  for (const std::string& arg : args) AppendQuoted(command, " ", arg);
+  const fs::path outPath = scratch / "stdout.txt", errPath = scratch / "stderr.txt";
+  AppendQuoted(command, " >", outPath.string());
+  AppendQuoted(command, " 2>", errPath.string());
+  const int status = std::system(command.c_str());
+  CommandResult result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = ReadText(outPath);
+  result.err = ReadText(errPath);
+  return result;
+}
+
+// The names in `dir`, sorted; empty when it does not exist.
+inline std::vector<std::string> FilesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  if (!fs::exists(dir)) return names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+inline std::vector<std::string> ExrChannelNames(const fs::path& path) {
+  Imf::InputFile file(path.c_str());
+  std::vector<std::string> names;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+    names.emplace_back(it.name());
+  }
+  return names;
+}
+
+// Every channel of an EXR file, by name.
+inline std::map<std::string, std::vector<float>> ReadExrChannels(const fs::path& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  const std::size_t width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
+  const std::size_t height = static_cast<std::size_t>(window.max.y - window.min.y + 1);
+  std::map<std::string, std::vector<float>> channels;
+  Imf::FrameBuffer frameBuffer;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+    std::vector<float>& values = channels[it.name()];
+    values.resize(width * height);
+    frameBuffer.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()),
+                                             sizeof(float), sizeof(float) * width));
+  }
+  file.setFrameBuffer(frameBuffer);
+  file.readPixels(window.min.y, window.max.y);
+  return channels;
+}
+
+// A fresh, empty scratch directory per test (named after suite, test and process), removed
+// afterwards.
+class ScratchDirTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    std::replace(name.begin(), name.end(), '/', '_');
+    scratch_ = fs::temp_directory_path() / ("aasim_cli_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(scratch_);
+    fs::create_directories(scratch_);
+  }
+  void TearDown() override { fs::remove_all(scratch_); }
+
+  fs::path scratch_;
+};
+
+}  // namespace cli::testing
