@@ -1,5 +1,6 @@
-// glTF 2.0 import: tinygltf parses the file, this module validates every accessor it touches and
-// flattens the scene's node tree into world-space triangle lists. Any defect is a SceneError.
+// glTF 2.0 import: tinygltf parses the file, this module validates every accessor it touches,
+// flattens the scene's node tree into world-space triangle lists with their base colour materials
+// and sRGB-decoded textures, and picks the file's camera. Any defect is a SceneError.
 
 #include <algorithm>
 #include <array>
@@ -9,7 +10,13 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <limits>
+#include <map>
+#include <numbers>
 #include <numeric>
+#include <optional>
+#include <set>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -23,6 +30,7 @@
 #include <tiny_gltf.h>
 
 #include "scenes/scene.h"
+#include "scenes/texture.h"
 
 namespace scenes {
 namespace {
@@ -128,10 +136,49 @@ bool IsAppearanceExtension(const std::string& name) {
                      [&](std::string_view prefix) { return name.starts_with(prefix); });
 }
 
-// Images cannot change coverage, so they are neither decoded nor required to exist.
-bool SkipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
+// Only base colour images are ever drawn, so decoding waits until a material needs one: here
+// the encoded bytes of a uri image (a file or data URI, read by tinygltf into a buffer of exactly
+// `size` bytes) are kept as they are. A bufferView image is left alone because tinygltf does not
+// check that view against its buffer; the flattener reads it through its own checks.
+bool KeepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView >= 0 || size <= 0) return true;
+  image->image.assign(bytes, bytes + size);
+  image->as_is = true;
   return true;
+}
+
+bool IsPngOrJpeg(const tinygltf::Image& image) {
+  if (image.mimeType == "image/png" || image.mimeType == "image/jpeg") return true;
+  const std::string extension = Lowercase(std::filesystem::path(image.uri).extension().string());
+  return !image.uri.starts_with("data:") &&
+         (extension == ".png" || extension == ".jpg" || extension == ".jpeg");
+}
+
+std::string FormatNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// One warning per extension the file uses: each says what aasim draws instead.
+std::string IgnoredExtensionMessage(const std::string& name) {
+  std::string text = "extension " + name + " is ignored";
+  if (name == "KHR_texture_transform") return text + ": texture coordinates are used untransformed";
+  if (name == "KHR_lights_punctual") {
+    return text + ": aasim lights every scene with its own directional light";
+  }
+  if (name == "KHR_materials_pbrSpecularGlossiness") {
+    return text + ": the pbrMetallicRoughness base colour is used";
+  }
+  if (name.starts_with("KHR_materials_")) {
+    return text + ": aasim shades the base colour with Lambert only";
+  }
+  if (name == "KHR_texture_basisu" || name == "EXT_texture_webp") {
+    return text + ": textures fall back to their PNG or JPEG source, if they have one";
+  }
+  if (name == kDracoExtension) return text + ": the uncompressed fallback geometry is used";
+  return text;
 }
 
 // Where an accessor's elements live: `data` is null for an accessor without a bufferView,
@@ -144,8 +191,15 @@ struct ElementView {
 
 // The element kinds this loader reads, with the names used in messages.
 struct AccessorUse {
-  std::string_view role;  // "POSITION", "NORMAL", "indices"
+  std::string_view role;  // "POSITION", "NORMAL", "TEXCOORD_0", "indices"
   int type;               // TINYGLTF_TYPE_*
+};
+
+// A camera reached through the node tree, with that node instance's world transform.
+struct CameraInstance {
+  int camera;
+  int node;
+  glm::dmat4 world;
 };
 
 class GltfFlattener {
@@ -153,15 +207,23 @@ class GltfFlattener {
   GltfFlattener(const std::filesystem::path& path, const tinygltf::Model& model)
       : path_(path), model_(model) {}
 
-  std::vector<Mesh> Flatten() {
+  // Everything but the scene's name.
+  Scene Flatten(float aspect) {
     CheckRequiredExtensions();
+    WarnUnmodelledFileFeatures();
     for (int root : RootNodes()) WalkFrom(root);
     WarnSkipped();
     if (meshes_.empty()) {
       Fail("contains no triangles to draw (" + std::to_string(meshInstances_) +
            " mesh instances in the scene)");
     }
-    return std::move(meshes_);
+    Scene scene;
+    scene.meshes = std::move(meshes_);
+    scene.materials = std::move(materials_);
+    scene.textures = std::move(textures_);
+    scene.bounds = ComputeBounds(scene.meshes);
+    scene.camera = MakeCamera(scene.bounds, aspect);
+    return scene;
   }
 
  private:
@@ -173,6 +235,23 @@ class GltfFlattener {
 
   [[noreturn]] void Fail(const std::string& problem) const {
     throw SceneError(path_.string() + ": " + problem);
+  }
+
+  // Each distinct text is printed once per file, however many elements it concerns.
+  void Warn(const std::string& text) {
+    if (warned_.insert(text).second) std::cerr << path_.string() << ": warning: " << text << '\n';
+  }
+
+  void WarnUnmodelledFileFeatures() {
+    for (const std::string& name : model_.extensionsUsed) Warn(IgnoredExtensionMessage(name));
+    for (const std::string& name : model_.extensionsRequired) Warn(IgnoredExtensionMessage(name));
+    if (!model_.animations.empty()) {
+      Warn(std::to_string(model_.animations.size()) +
+           " animation(s) ignored: the scene is drawn in its static pose");
+    }
+    if (!model_.skins.empty()) {
+      Warn("skins are ignored: skinned meshes are drawn in their bind pose");
+    }
   }
 
   void CheckRequiredExtensions() const {
@@ -242,6 +321,7 @@ class GltfFlattener {
     }
     const glm::dmat4 world = parentWorld * LocalTransform(node, nodeIndex);
     if (node.mesh >= 0) AddMeshInstance(node.mesh, world);
+    if (node.camera >= 0) NoteCamera(node.camera, nodeIndex, world);
     onPath[static_cast<std::size_t>(nodeIndex)] = true;
     path.push_back(PathEntry{nodeIndex, world, 0});
   }
@@ -358,6 +438,19 @@ class GltfFlattener {
              std::to_string(mesh.positions.size()) + " positions");
       }
     }
+    const auto texcoordIt = primitive.attributes.find("TEXCOORD_0");
+    if (texcoordIt != primitive.attributes.end()) {
+      mesh.texcoords = ReadTexcoords(texcoordIt->second, where);
+      if (mesh.texcoords.size() != mesh.positions.size()) {
+        Fail(where + ": " + std::to_string(mesh.texcoords.size()) + " texture coordinates for " +
+             std::to_string(mesh.positions.size()) + " positions");
+      }
+    }
+    mesh.material = SceneMaterial(primitive.material, !mesh.texcoords.empty(), where);
+    if (!primitive.targets.empty()) {
+      Warn("morph targets are ignored: meshes are drawn in their base shape");
+    }
+    if (primitive.attributes.contains("COLOR_0")) Warn("vertex colours (COLOR_0) are ignored");
     const bool indexed = primitive.indices >= 0;
     std::vector<std::uint32_t> vertexOrder = indexed ? ReadIndices(primitive.indices, where)
                                                      : SequentialIndices(mesh.positions.size());
@@ -366,6 +459,274 @@ class GltfFlattener {
     if (mesh.indices.empty()) return;
     TransformToWorld(mesh, world, where);
     meshes_.push_back(std::move(mesh));
+  }
+
+  // --- Materials and textures -----------------------------------------------------------------
+
+  // The Scene::materials index for a primitive's glTF material (-1 stays -1). A textured
+  // material on a primitive without TEXCOORD_0 becomes an untextured copy: there is nothing to
+  // sample the texture with.
+  int SceneMaterial(int index, bool hasTexcoords, const std::string& where) {
+    if (index < 0) return -1;
+    if (static_cast<std::size_t>(index) >= model_.materials.size()) {
+      Fail(where + ": material " + std::to_string(index) + " does not exist (" +
+           std::to_string(model_.materials.size()) + " materials)");
+    }
+    const auto [it, inserted] = materialIndex_.try_emplace(index, -1);
+    if (inserted) it->second = AddMaterial(index);
+    const int converted = it->second;
+    if (hasTexcoords || materials_[static_cast<std::size_t>(converted)].baseColourTexture < 0) {
+      return converted;
+    }
+    Warn("primitives without TEXCOORD_0 are drawn with their material's base colour factor only "
+         "(their base colour texture has no coordinates)");
+    const auto [variant, added] = untexturedVariant_.try_emplace(converted, -1);
+    if (added) {
+      Material untextured = materials_[static_cast<std::size_t>(converted)];
+      untextured.name.append(" (untextured)");
+      untextured.baseColourTexture = -1;
+      materials_.push_back(std::move(untextured));
+      variant->second = static_cast<int>(materials_.size()) - 1;
+    }
+    return variant->second;
+  }
+
+  int AddMaterial(int index) {
+    const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(index)];
+    std::string where = "material ";
+    if (source.name.empty()) {
+      where.append(std::to_string(index));
+    } else {
+      where.append("'").append(source.name).append("'");
+    }
+    const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+    ExpectSize(factor, 4, where + " baseColorFactor");
+    if (!std::all_of(factor.begin(), factor.end(), [](double v) { return std::isfinite(v); })) {
+      Fail(where + ": baseColorFactor has a non-finite component");
+    }
+    WarnUnmodelledMaps(source);
+    Material material;
+    material.name = source.name.empty() ? where : source.name;
+    material.baseColourFactor = glm::vec4(glm::dvec4(factor[0], factor[1], factor[2], factor[3]));
+    material.baseColourTexture =
+        BaseColourTexture(source.pbrMetallicRoughness.baseColorTexture, where);
+    materials_.push_back(std::move(material));
+    return static_cast<int>(materials_.size()) - 1;
+  }
+
+  void WarnUnmodelledMaps(const tinygltf::Material& source) {
+    if (source.normalTexture.index >= 0) {
+      Warn("normal maps are ignored: shading uses the vertex normals");
+    }
+    if (source.occlusionTexture.index >= 0) Warn("occlusion maps are ignored");
+    if (source.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0) {
+      Warn("metallic-roughness maps are ignored: shading is Lambert on the base colour");
+    }
+    const bool emissive = std::any_of(source.emissiveFactor.begin(), source.emissiveFactor.end(),
+                                      [](double v) { return v != 0.0; });
+    if (emissive || source.emissiveTexture.index >= 0) Warn("emission is ignored");
+    if (source.alphaMode != "OPAQUE") {
+      Warn("alphaMode " + source.alphaMode + " is ignored: every surface is drawn opaque");
+    }
+  }
+
+  int BaseColourTexture(const tinygltf::TextureInfo& info, const std::string& where) {
+    if (info.index < 0) return -1;
+    if (info.texCoord != 0) {
+      Warn("base colour textures on TEXCOORD_" + std::to_string(info.texCoord) +
+           " are not supported (TEXCOORD_0 only): their materials use the base colour factor");
+      return -1;
+    }
+    if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
+      Fail(where + ": baseColorTexture refers to texture " + std::to_string(info.index) +
+           ", which does not exist (" + std::to_string(model_.textures.size()) + " textures)");
+    }
+    const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
+    const std::string textureName = "texture " + std::to_string(info.index);
+    CheckSampler(texture.sampler, textureName);
+    if (texture.source < 0) {
+      Warn("textures without a PNG or JPEG source image are dropped: their materials use the "
+           "base colour factor");
+      return -1;
+    }
+    if (static_cast<std::size_t>(texture.source) >= model_.images.size()) {
+      Fail(textureName + " refers to image " + std::to_string(texture.source) +
+           ", which does not exist (" + std::to_string(model_.images.size()) + " images)");
+    }
+    // Textures differ from their image only by the sampler, which aasim does not model.
+    const auto [it, inserted] = imageTexture_.try_emplace(texture.source, -1);
+    if (inserted) {
+      std::optional<Texture> decoded = DecodeImage(texture.source);
+      if (decoded) {
+        textures_.push_back(std::move(*decoded));
+        it->second = static_cast<int>(textures_.size()) - 1;
+      }
+    }
+    return it->second;
+  }
+
+  void CheckSampler(int index, const std::string& textureName) {
+    if (index < 0) return;
+    if (static_cast<std::size_t>(index) >= model_.samplers.size()) {
+      Fail(textureName + " refers to sampler " + std::to_string(index) +
+           ", which does not exist (" + std::to_string(model_.samplers.size()) + " samplers)");
+    }
+    const tinygltf::Sampler& sampler = model_.samplers[static_cast<std::size_t>(index)];
+    if (sampler.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT ||
+        sampler.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT) {
+      Warn("texture wrap modes other than REPEAT are sampled as REPEAT");
+    }
+    const std::array<int, 3> nearest = {TINYGLTF_TEXTURE_FILTER_NEAREST,
+                                        TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST,
+                                        TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR};
+    if (std::find(nearest.begin(), nearest.end(), sampler.magFilter) != nearest.end() ||
+        std::find(nearest.begin(), nearest.end(), sampler.minFilter) != nearest.end()) {
+      Warn("NEAREST texture filters are sampled bilinearly");
+    }
+  }
+
+  // nullopt (with a warning) for a format stb_image cannot decode; a PNG or JPEG that fails to
+  // decode, or an image file that could not be read, is an error.
+  std::optional<Texture> DecodeImage(int index) {
+    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
+    const bool external = !image.uri.empty() && !image.uri.starts_with("data:");
+    std::string name = !image.name.empty() ? image.name
+                       : external          ? image.uri
+                                           : "image " + std::to_string(index);
+    std::string where = "image " + std::to_string(index);
+    if (!image.name.empty() || external) where.append(" '").append(name).append("'");
+    const std::span<const unsigned char> encoded = EncodedImage(image, where);
+    if (encoded.empty()) {
+      Fail(where + (external ? ": cannot read the image file" : ": has no image data"));
+    }
+    if (encoded.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+      Fail(where + ": " + std::to_string(encoded.size()) + " bytes is too large to decode");
+    }
+    tinygltf::Image decoded;
+    std::string errors;
+    std::string warnings;
+    if (!tinygltf::LoadImageData(&decoded, index, &errors, &warnings, 0, 0, encoded.data(),
+                                 static_cast<int>(encoded.size()), nullptr)) {
+      if (IsPngOrJpeg(image)) Fail(where + ": cannot decode: " + OneLine(errors));
+      Warn("images that are not PNG or JPEG are dropped (first: " + where +
+           "): their materials use the base colour factor");
+      return std::nullopt;
+    }
+    try {
+      return DecodeTexels(std::move(name), decoded.width, decoded.height, decoded.component,
+                          decoded.bits, decoded.image, ColourEncoding::Srgb);
+    } catch (const SceneError& e) {
+      Fail(where + ": " + e.what());
+    }
+  }
+
+  std::span<const unsigned char> EncodedImage(const tinygltf::Image& image,
+                                              const std::string& where) const {
+    if (image.bufferView < 0) return image.image;
+    if (static_cast<std::size_t>(image.bufferView) >= model_.bufferViews.size()) {
+      Fail(where + " refers to bufferView " + std::to_string(image.bufferView) +
+           ", which does not exist");
+    }
+    const tinygltf::BufferView& view =
+        model_.bufferViews[static_cast<std::size_t>(image.bufferView)];
+    return {BufferViewData(view, image.bufferView, where), view.byteLength};
+  }
+
+  // --- Camera -----------------------------------------------------------------------------------
+
+  void NoteCamera(int cameraIndex, int nodeIndex, const glm::dmat4& world) {
+    if (static_cast<std::size_t>(cameraIndex) >= model_.cameras.size()) {
+      Fail("node " + std::to_string(nodeIndex) + " refers to camera " +
+           std::to_string(cameraIndex) + ", which does not exist (" +
+           std::to_string(model_.cameras.size()) + " cameras)");
+    }
+    const std::string& type = model_.cameras[static_cast<std::size_t>(cameraIndex)].type;
+    if (type == "perspective") {
+      if (!perspective_) perspective_ = CameraInstance{cameraIndex, nodeIndex, world};
+    } else if (type == "orthographic") {
+      if (!orthographic_) orthographic_ = CameraInstance{cameraIndex, nodeIndex, world};
+    } else {
+      Fail("camera " + std::to_string(cameraIndex) + " has type '" + type +
+           "', expected perspective or orthographic");
+    }
+  }
+
+  Camera MakeCamera(const Bounds& bounds, float aspect) {
+    if (perspective_) return FileCamera(*perspective_, bounds, aspect);
+    if (orthographic_) {
+      Warn("orthographic camera " + std::to_string(orthographic_->camera) +
+           " is not supported (aasim renders perspective views): framing the scene bounds instead");
+    }
+    return FrameBounds(bounds, aspect);
+  }
+
+  Camera FileCamera(const CameraInstance& instance, const Bounds& bounds, float aspect) {
+    const tinygltf::Camera& source = model_.cameras[static_cast<std::size_t>(instance.camera)];
+    const tinygltf::PerspectiveCamera& lens = source.perspective;
+    std::string where = "camera " + std::to_string(instance.camera);
+    if (!source.name.empty()) where.append(" '").append(source.name).append("'");
+    if (!(std::isfinite(lens.yfov) && lens.yfov > 0.0 && lens.yfov < std::numbers::pi)) {
+      Fail(where + ": yfov " + FormatNumber(lens.yfov) + " is not between 0 and pi");
+    }
+    if (!(std::isfinite(lens.znear) && lens.znear > 0.0)) {
+      Fail(where + ": znear " + FormatNumber(lens.znear) + " is not positive");
+    }
+    const bool infinite = lens.zfar == 0.0;
+    if (!infinite && !(std::isfinite(lens.zfar) && lens.zfar > lens.znear)) {
+      Fail(where + ": zfar " + FormatNumber(lens.zfar) + " is not beyond znear " +
+           FormatNumber(lens.znear));
+    }
+    // glTF cameras look down their node's -z with +y up.
+    const glm::dvec3 eye(instance.world[3]);
+    const glm::dvec3 back(instance.world[2]);
+    const glm::dvec3 right = glm::cross(-back, glm::dvec3(instance.world[1]));
+    if (!IsFinite(glm::vec3(eye)) || !(glm::length(back) > 0.0) || !(glm::length(right) > 0.0)) {
+      Fail("node " + std::to_string(instance.node) + " (" + where +
+           ") has a degenerate transform: no view direction or up vector");
+    }
+    const glm::dvec3 forward = -glm::normalize(back);
+    const glm::dvec3 centre(bounds.Centre());
+    // The target only anchors orbits and dollies (motion.h): put it at the scene's depth.
+    const double depth = glm::dot(centre - eye, forward);
+    const double focus =
+        depth > lens.znear ? depth : std::max(glm::length(centre - eye), 2.0 * lens.znear);
+    Camera camera;
+    camera.eye = glm::vec3(eye);
+    camera.target = glm::vec3(eye + forward * focus);
+    camera.up = glm::vec3(glm::normalize(glm::cross(right, forward)));
+    camera.verticalFovRadians = static_cast<float>(lens.yfov);
+    camera.zNear = static_cast<float>(lens.znear);
+    camera.zFar = static_cast<float>(lens.zfar);
+    if (infinite) {
+      double farthest = 0.0;
+      for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 p((corner & 1) ? bounds.max.x : bounds.min.x,
+                           (corner & 2) ? bounds.max.y : bounds.min.y,
+                           (corner & 4) ? bounds.max.z : bounds.min.z);
+        farthest = std::max(farthest, glm::dot(p - eye, forward));
+      }
+      camera.zFar = static_cast<float>(std::max(farthest * 1.05, 2.0 * lens.znear));
+      Warn(where + " has an infinite far plane; aasim uses zfar = " +
+           FormatNumber(static_cast<double>(camera.zFar)) + ", just beyond the scene bounds");
+    }
+    // Planes far outside the scene only waste depth precision (2CylinderEngine's camera spans
+    // 0.05 to 10^6 around a scene 750 units wide). Pulling them in to the bounding sphere, with
+    // the slack EncloseBounds uses, clips nothing that the file's planes did not clip already.
+    const double distance = glm::length(centre - eye);
+    const double radius = 1.05 * static_cast<double>(bounds.Radius());
+    const double tightNear = std::max(lens.znear, distance - radius);
+    const double tightFar = std::min(static_cast<double>(camera.zFar), distance + radius);
+    if (tightFar > tightNear) {
+      camera.zNear = static_cast<float>(tightNear);
+      camera.zFar = static_cast<float>(tightFar);
+    }
+    const auto imageAspect = static_cast<double>(aspect);
+    if (lens.aspectRatio > 0.0 && std::abs(lens.aspectRatio - imageAspect) > 1e-3 * imageAspect) {
+      Warn(where + ": aspectRatio " + FormatNumber(lens.aspectRatio) +
+           " differs from the image's " + FormatNumber(imageAspect) +
+           "; yfov is kept and the horizontal field of view follows the image");
+    }
+    return camera;
   }
 
   void CheckFinite(const std::vector<glm::vec3>& values, std::string_view what,
@@ -550,6 +911,48 @@ class GltfFlattener {
     return values;
   }
 
+  // Float, or unsigned byte or short normalized to [0, 1], as the glTF spec allows.
+  std::vector<glm::vec2> ReadTexcoords(int index, const std::string& where) const {
+    const AccessorUse use{"TEXCOORD_0", TINYGLTF_TYPE_VEC2};
+    const tinygltf::Accessor& accessor = Accessor(index, use.role, where);
+    const std::string name = where + ": TEXCOORD_0 accessor " + std::to_string(index);
+    std::size_t size = 0;
+    switch (accessor.componentType) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: size = 4; break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: size = 2; break;
+      default:
+        Fail(name + " holds " + ComponentTypeName(accessor.componentType) +
+             " components; glTF allows float, or unsigned byte or short normalized");
+    }
+    if (size != 4 && !accessor.normalized) {
+      Fail(name + " holds " + ComponentTypeName(accessor.componentType) +
+           " components without \"normalized\": true, which glTF requires for them");
+    }
+    const ElementView view = ViewElements(index, use, 2 * size, where);
+    std::vector<glm::vec2> values(view.count, glm::vec2(0.0f));
+    if (view.data == nullptr) return values;
+    const float maxValue = size == 1 ? 255.0f : 65535.0f;
+    for (std::size_t i = 0; i < view.count; ++i) {
+      const unsigned char* element = view.data + i * view.stride;
+      if (size == 4) {
+        std::array<float, 2> uv{};
+        std::memcpy(uv.data(), element, sizeof(uv));
+        values[i] = glm::vec2(uv[0], uv[1]);
+      } else {
+        values[i] = glm::vec2(static_cast<float>(ReadUnsigned(element, size)),
+                              static_cast<float>(ReadUnsigned(element + size, size))) /
+                    maxValue;
+      }
+      if (!std::isfinite(values[i].x) || !std::isfinite(values[i].y)) {
+        Fail(where + ": vertex " + std::to_string(i) + " has a non-finite texture coordinate (" +
+             FormatNumber(static_cast<double>(values[i].x)) + ", " +
+             FormatNumber(static_cast<double>(values[i].y)) + ")");
+      }
+    }
+    return values;
+  }
+
   std::vector<std::uint32_t> ReadIndices(int index, const std::string& where) const {
     const AccessorUse use{"indices", TINYGLTF_TYPE_SCALAR};
     const tinygltf::Accessor& accessor = Accessor(index, use.role, where);
@@ -596,6 +999,14 @@ class GltfFlattener {
   const std::filesystem::path& path_;
   const tinygltf::Model& model_;
   std::vector<Mesh> meshes_;
+  std::vector<Material> materials_;
+  std::vector<Texture> textures_;
+  std::map<int, int> materialIndex_;      // glTF material -> materials_
+  std::map<int, int> untexturedVariant_;  // materials_ entry -> its untextured copy
+  std::map<int, int> imageTexture_;       // glTF image -> textures_, -1 when dropped
+  std::optional<CameraInstance> perspective_;
+  std::optional<CameraInstance> orthographic_;
+  std::set<std::string> warned_;
   std::size_t nodeInstances_ = 0;
   std::size_t meshInstances_ = 0;
   // Indexed by glTF mode; the triangle modes' slots stay unused.
@@ -641,7 +1052,7 @@ tinygltf::Model ParseFile(const std::filesystem::path& path, bool binary) {
     throw SceneError(path.string() + ": not a regular file");
   }
   tinygltf::TinyGLTF parser;
-  parser.SetImageLoader(&SkipImage, nullptr);
+  parser.SetImageLoader(&KeepEncodedImage, nullptr);
   tinygltf::Model model;
   std::string errors;
   std::string warnings;
@@ -675,11 +1086,8 @@ Scene LoadGltf(const std::filesystem::path& path, float aspect) {
                      "'; expected .gltf or .glb (or builtin:NAME for a built-in scene)");
   }
   const tinygltf::Model model = ParseFile(path, extension == ".glb");
-  Scene scene;
+  Scene scene = GltfFlattener(path, model).Flatten(aspect);
   scene.name = path.filename().string();
-  scene.meshes = GltfFlattener(path, model).Flatten();
-  scene.bounds = ComputeBounds(scene.meshes);
-  scene.camera = FrameBounds(scene.bounds, aspect);
   return scene;
 }
 

@@ -37,7 +37,16 @@ glm::vec3 UpFor(const glm::vec3& towardsEye) {
   return std::abs(glm::dot(towardsEye, worldUp)) > 0.999f ? glm::vec3{0.0f, 0.0f, -1.0f} : worldUp;
 }
 
+void SetDepthRange(Camera& camera, float distance, float radius) {
+  camera.zNear = std::max(distance - radius * kDepthSlack, distance * kMinNearFraction);
+  camera.zFar = distance + radius * kDepthSlack;
+}
+
 }  // namespace
+
+bool MeshMotion::IsStatic() const {
+  return degreesPerFrame == 0.0f && unitsPerFrame == glm::vec3(0.0f);
+}
 
 float Bounds::Radius() const { return 0.5f * glm::length(max - min); }
 
@@ -96,9 +105,16 @@ Camera FrameBoundsAlong(const Bounds& bounds, float aspect, const glm::vec3& tow
   camera.target = bounds.Centre();
   camera.eye = camera.target + direction * distance;
   camera.up = UpFor(direction);
-  camera.zNear = std::max(distance - radius * kDepthSlack, distance * kMinNearFraction);
-  camera.zFar = distance + radius * kDepthSlack;
+  SetDepthRange(camera, distance, radius);
   return camera;
+}
+
+void EncloseBounds(Camera& camera, const Bounds& bounds) {
+  const float radius = FramingRadius(bounds);
+  // An eye at the very centre would get zNear = 0, which the projection cannot take.
+  const float distance =
+      std::max(glm::distance(camera.eye, bounds.Centre()), radius * kMinNearFraction);
+  SetDepthRange(camera, distance, radius);
 }
 
 Camera FrameBounds(const Bounds& bounds, float aspect) {

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace scenes {
 
@@ -27,12 +29,49 @@ struct Bounds {
   float Radius() const;  // half the diagonal
 };
 
+// Linear RGBA texels, row-major, top row first; colour textures are sRGB-decoded on load.
+// Sampling wraps (glTF's default sampler).
+struct Texture {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;
+};
+
+// glTF metallic-roughness base colour only: the shading model is Lambert (see shading.h).
+struct Material {
+  std::string name;
+  glm::vec4 baseColourFactor{1.0f};  // linear
+  int baseColourTexture = -1;        // index into Scene::textures, -1 for none
+};
+
+// Rigid motion of a mesh over frames, for temporal passes (motion.h evaluates it). Frame 0 is
+// the mesh as stored; at frame t the mesh is turned by t * degreesPerFrame about `axis` through
+// `pivot` (counter-clockwise looking against `axis`), then moved by t * unitsPerFrame.
+struct MeshMotion {
+  glm::vec3 pivot{0.0f};
+  glm::vec3 axis{0.0f, 0.0f, 1.0f};
+  float degreesPerFrame = 0.0f;
+  glm::vec3 unitsPerFrame{0.0f};
+  bool IsStatic() const;
+};
+
 // All node transforms applied; triangle list; indices index `positions`.
 struct Mesh {
   std::string name;
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  // empty or one per position
+  std::vector<glm::vec3> normals;    // empty or one per position
+  std::vector<glm::vec2> texcoords;  // TEXCOORD_0: empty or one per position
   std::vector<std::uint32_t> indices;
+  int material = -1;  // index into Scene::materials, -1 for the default material
+  MeshMotion motion{};  // static unless a built-in scene animates the mesh
+};
+
+// One directional light plus an ambient term, shared by the raster material kernel and the
+// ground truth so both shade the same function (shading.h).
+struct Lighting {
+  glm::vec3 towardsLight{0.4f, 0.8f, 0.45f};  // world space, normalised on use
+  float ambient = 0.15f;
 };
 
 // Right-handed, looking down -z in view space; projection maps depth to [0, 1] (D3D), so
@@ -51,6 +90,9 @@ struct Camera {
 struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  Lighting lighting;
   Camera camera;
   Bounds bounds;
 
@@ -68,10 +110,15 @@ Camera FrameBounds(const Bounds& bounds, float aspect);
 Camera FrameBoundsAlong(const Bounds& bounds, float aspect, const glm::vec3& towardsEye,
                         float fill);
 Bounds ComputeBounds(const std::vector<Mesh>& meshes);
+// Sets zNear/zFar to enclose the bounding sphere seen from camera.eye, the rule FrameBoundsAlong
+// uses (5% slack; zNear at least 1/1000 of the distance to the centre, for depth precision).
+void EncloseBounds(Camera& camera, const Bounds& bounds);
 
-// glTF 2.0, .gltf or .glb. Throws SceneError ("FILE: problem") for malformed files,
-// non-finite vertices, out-of-range indices; primitives that are not triangles are skipped
-// with one warning each on stderr.
+// glTF 2.0, .gltf or .glb: geometry, TEXCOORD_0, base colour materials and textures, and the
+// first perspective camera in the node tree (else FrameBounds). Throws SceneError ("FILE:
+// problem") for malformed files, non-finite vertices, out-of-range indices; features aasim does
+// not model (points and lines, other material maps, animations, ...) are skipped with one
+// warning line each on stderr. docs/scenes.md lists them.
 Scene LoadGltf(const std::filesystem::path& path, float aspect);
 
 // Built-in scenes, no file needed. Throws SceneError listing the names for an unknown one.

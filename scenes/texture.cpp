@@ -1,0 +1,88 @@
+// Texture decoding (see texture.h). Every encoded value maps through a lookup table built once
+// per image, so a 16-bit texture costs 65,536 curve evaluations rather than one per texel.
+
+#include "scenes/texture.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+namespace scenes {
+
+float SrgbToLinear(float encoded) {
+  if (encoded <= 0.04045f) return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+namespace {
+
+// Value of every possible code (2^bits of them) under the given encoding.
+std::vector<float> DecodeTable(int bitsPerChannel, ColourEncoding encoding) {
+  const std::size_t codes = std::size_t{1} << bitsPerChannel;
+  const auto maxCode = static_cast<float>(codes - 1);
+  std::vector<float> table(codes);
+  for (std::size_t code = 0; code < codes; ++code) {
+    const float value = static_cast<float>(code) / maxCode;
+    table[code] = encoding == ColourEncoding::Srgb ? SrgbToLinear(value) : value;
+  }
+  return table;
+}
+
+}  // namespace
+
+Texture DecodeTexels(std::string name, int width, int height, int channels, int bitsPerChannel,
+                     std::span<const unsigned char> bytes, ColourEncoding encoding) {
+  if (width <= 0 || height <= 0) {
+    throw SceneError(name + ": image size " + std::to_string(width) + "x" +
+                     std::to_string(height) + " is empty");
+  }
+  if (channels < 1 || channels > 4) {
+    throw SceneError(name + ": " + std::to_string(channels) +
+                     " channels per texel; aasim reads 1 to 4");
+  }
+  if (bitsPerChannel != 8 && bitsPerChannel != 16) {
+    throw SceneError(name + ": " + std::to_string(bitsPerChannel) +
+                     " bits per channel; aasim reads 8 or 16");
+  }
+  const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::size_t valueSize = bitsPerChannel == 8 ? 1 : 2;
+  const std::size_t expected = texels * static_cast<std::size_t>(channels) * valueSize;
+  if (bytes.size() != expected) {
+    throw SceneError(name + ": " + std::to_string(bytes.size()) + " bytes of texels, expected " +
+                     std::to_string(expected) + " for " + std::to_string(width) + "x" +
+                     std::to_string(height) + "x" + std::to_string(channels) + " at " +
+                     std::to_string(bitsPerChannel) + " bits");
+  }
+  const std::vector<float> colourTable = DecodeTable(bitsPerChannel, encoding);
+  const std::vector<float> alphaTable = DecodeTable(bitsPerChannel, ColourEncoding::Linear);
+  const auto code = [&](std::size_t value) -> std::size_t {
+    if (valueSize == 1) return bytes[value];
+    std::uint16_t wide = 0;
+    std::memcpy(&wide, bytes.data() + 2 * value, sizeof(wide));
+    return wide;
+  };
+  Texture texture;
+  texture.name = std::move(name);
+  texture.width = width;
+  texture.height = height;
+  texture.texels.resize(texels);
+  const auto perTexel = static_cast<std::size_t>(channels);
+  const bool hasAlpha = channels == 2 || channels == 4;
+  const std::size_t colourChannels = hasAlpha ? perTexel - 1 : perTexel;
+  for (std::size_t t = 0; t < texels; ++t) {
+    const std::size_t first = t * perTexel;
+    glm::vec4& texel = texture.texels[t];
+    if (colourChannels == 1) {
+      texel = glm::vec4(glm::vec3(colourTable[code(first)]), 1.0f);
+    } else {
+      texel = glm::vec4(colourTable[code(first)], colourTable[code(first + 1)],
+                        colourTable[code(first + 2)], 1.0f);
+    }
+    if (hasAlpha) texel.a = alphaTable[code(first + colourChannels)];
+  }
+  return texture;
+}
+
+}  // namespace scenes
