@@ -4,9 +4,10 @@
 
 #include <string>
 
-#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "scenes/normals.h"
+#include "scenes/shading.h"
 #include "sim/frame.h"
 
 namespace cli {
@@ -35,24 +36,6 @@ ClipSpaceScene ToClipSpace(const scenes::Scene& scene, float aspect) {
   return clip;
 }
 
-std::vector<glm::vec3> SmoothNormals(std::span<const glm::vec3> positions,
-                                     std::span<const std::uint32_t> indices) {
-  std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
-  for (std::size_t corner = 0; corner + 2 < indices.size(); corner += 3) {
-    const std::uint32_t a = indices[corner], b = indices[corner + 1], c = indices[corner + 2];
-    // Twice the triangle's area in length, so large faces outweigh slivers.
-    const glm::vec3 face = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
-    normals[a] += face;
-    normals[b] += face;
-    normals[c] += face;
-  }
-  for (glm::vec3& normal : normals) {
-    const float length = glm::length(normal);
-    normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
-  }
-  return normals;
-}
-
 FrameScene ToFrameScene(const scenes::Scene& scene, float aspect) {
   FrameScene frame;
   frame.clip = ToClipSpace(scene, aspect);
@@ -60,12 +43,11 @@ FrameScene ToFrameScene(const scenes::Scene& scene, float aspect) {
   frame.objectIds.reserve(scene.TriangleCount());
   for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
     const scenes::Mesh& source = scene.meshes[mesh];
-    const std::vector<glm::vec3> normals =
-        source.normals.empty() ? SmoothNormals(source.positions, source.indices) : source.normals;
+    const std::vector<glm::vec3> normals = scenes::VertexNormals(source);
     frame.normals.insert(frame.normals.end(), normals.begin(), normals.end());
     frame.objectIds.insert(frame.objectIds.end(), source.indices.size() / 3,
                            static_cast<std::uint32_t>(mesh));
-    frame.baseColours.push_back(kMeshPalette[mesh % kMeshPalette.size()]);
+    frame.baseColours.push_back(glm::vec3(scenes::BaseColour(scene, mesh, glm::vec2(0.0f))));
   }
   return frame;
 }

@@ -42,6 +42,22 @@ void WritePng(const std::filesystem::path& path, int width, int height, int chan
   }
 }
 
+std::vector<std::uint8_t> EncodePng(int width, int height, int channels, std::span<const std::uint8_t> pixels) {
+  if (channels < 1 || channels > 4 || pixels.size() != PixelCount(width, height) * channels) {
+    throw std::invalid_argument("EncodePng: pixel buffer does not match the image size");
+  }
+  std::vector<std::uint8_t> png;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+  };
+  if (stbi_write_png_to_func(append, &png, width, height, channels, pixels.data(), width * channels) == 0) {
+    throw std::runtime_error("EncodePng: stb_image_write failed");
+  }
+  return png;
+}
+
 void WriteExr(const std::filesystem::path& path, int width, int height,
               std::span<const ExrChannel> channels) {
   const std::size_t pixelCount = PixelCount(width, height);

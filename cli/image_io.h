@@ -18,6 +18,9 @@ std::uint8_t EncodeSrgb8(float linear);
 void WritePng(const std::filesystem::path& path, int width, int height, int channels,
               std::span<const std::uint8_t> pixels);
 
+// The same PNG in memory (for self-contained HTML reports).
+std::vector<std::uint8_t> EncodePng(int width, int height, int channels, std::span<const std::uint8_t> pixels);
+
 struct ExrChannel {
   std::string name;
   std::span<const float> values;  // width * height

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
@@ -71,11 +72,34 @@ void FramePipeline::Validate(const FrameGeometry& geometry) const {
     throw std::invalid_argument("frame geometry: " + std::to_string(geometry.objectIds.size()) +
                                 " object ids for " + std::to_string(triangles) + " triangles");
   }
+  ValidateTextures(geometry);
   for (std::size_t t = 0; t < triangles; ++t) {
     if (geometry.objectIds[t] >= geometry.baseColours.size()) {
       throw std::invalid_argument("frame geometry: triangle " + std::to_string(t) + " names object " +
                                   std::to_string(geometry.objectIds[t]) + " of " +
                                   std::to_string(geometry.baseColours.size()));
+    }
+  }
+}
+
+void FramePipeline::ValidateTextures(const FrameGeometry& geometry) const {
+  if (!geometry.texcoords.empty() && geometry.texcoords.size() != geometry.clipPositions.size()) {
+    throw std::invalid_argument("frame geometry: " + std::to_string(geometry.texcoords.size()) + " texcoords for " +
+                                std::to_string(geometry.clipPositions.size()) + " vertices");
+  }
+  if (!geometry.baseColourTextures.empty() && geometry.baseColourTextures.size() != geometry.baseColours.size()) {
+    throw std::invalid_argument("frame geometry: " + std::to_string(geometry.baseColourTextures.size()) +
+                                " texture indices for " + std::to_string(geometry.baseColours.size()) + " objects");
+  }
+  for (std::size_t object = 0; object < geometry.baseColourTextures.size(); ++object) {
+    const int texture = geometry.baseColourTextures[object];
+    if (texture < -1 || texture >= static_cast<int>(geometry.textures.size())) {
+      throw std::invalid_argument("frame geometry: object " + std::to_string(object) + " names texture " +
+                                  std::to_string(texture) + " of " + std::to_string(geometry.textures.size()));
+    }
+    if (texture >= 0 && geometry.texcoords.empty()) {
+      throw std::invalid_argument("frame geometry: object " + std::to_string(object) +
+                                  " is textured but the geometry has no texcoords");
     }
   }
 }
@@ -97,6 +121,9 @@ DispatchReport FramePipeline::Render(const FrameGeometry& geometry) {
   const RwTextureView<glm::vec4> normalOut = dispatch.ReadWrite(normal_);
   const RwTextureView<std::uint32_t> idOut = dispatch.ReadWrite(objectId_);
   const RwTextureView<glm::vec2> velocityOut = dispatch.ReadWrite(velocity_);
+  std::vector<TextureView<glm::vec4>> textures;
+  textures.reserve(geometry.textures.size());
+  for (const Texture2D<glm::vec4>& texture : geometry.textures) textures.push_back(dispatch.Read(texture));
   const glm::vec3 towardsLight = glm::normalize(settings_.towardsLight);
   const int width = settings_.width, height = settings_.height;
   const float ambient = settings_.ambient;
@@ -109,8 +136,14 @@ DispatchReport FramePipeline::Render(const FrameGeometry& geometry) {
     glm::vec3 normal = glm::normalize(Interpolate(geometry.normals, corners, b));
     if (!lane.quad->frontFacing) normal = -normal;
     const std::uint32_t object = geometry.objectIds[primitive];
+    glm::vec3 base = geometry.baseColours[object];
+    const int texture = geometry.baseColourTextures.empty() ? -1 : geometry.baseColourTextures[object];
+    if (texture >= 0) {
+      const glm::vec2 uv = Interpolate(geometry.texcoords, corners, b);
+      base *= glm::vec3(textures[static_cast<std::size_t>(texture)].SampleBilinear(lane, uv, AddressMode::Repeat));
+    }
     const float lambert = std::max(0.0f, glm::dot(normal, towardsLight));
-    const glm::vec3 shaded = geometry.baseColours[object] * (ambient + (1.0f - ambient) * lambert);
+    const glm::vec3 shaded = base * (ambient + (1.0f - ambient) * lambert);
     if ((lane.Passed() & 1u) != 0) {
       const glm::vec4 current = Interpolate(geometry.clipPositions, corners, b);
       glm::vec2 velocity(0.0f);

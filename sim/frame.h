@@ -29,7 +29,12 @@ struct FrameGeometry {
   std::span<const glm::vec3> normals;                // world space per vertex, or empty (face normals)
   std::span<const std::uint32_t> indices;
   std::span<const std::uint32_t> objectIds;          // per triangle
-  std::span<const glm::vec3> baseColours;            // linear, per object id
+  std::span<const glm::vec3> baseColours;            // linear base colour factor, per object id
+  // Optional base colour textures (scenes/shading.h: factor times a bilinear, repeat-wrapped
+  // sample at TEXCOORD_0): per object an index into `textures` or -1; empty = untextured.
+  std::span<const glm::vec2> texcoords{};            // per vertex; required if any object is textured
+  std::span<const int> baseColourTextures{};         // per object id, or empty
+  std::span<const Texture2D<glm::vec4>> textures{};  // linear RGBA
 };
 
 struct FrameSettings {
@@ -46,7 +51,9 @@ struct FrameSettings {
   fmask::Colour clearColour{0.05f, 0.05f, 0.08f, 1.0f};
 };
 
-// The material kernel's declared resources and instruction estimate (an estimate for the timing
+// The material kernel (scenes/shading.h's model): base colour factor times an optional
+// bilinear, repeat-wrapped texture sample at the centroid, Lambert plus ambient.
+// Its declared resources and instruction estimate (an estimate for the timing
 // model, not a compiled shader): interpolation, normalise, one N.L and the G-buffer exports.
 inline constexpr KernelInfo kMaterialKernel{.vgprs = 24, .sgprs = 24, .ldsBytesPerGroup = 0,
                                             .valuInstructionsPerWave = 64};
@@ -75,6 +82,7 @@ class FramePipeline {
 
  private:
   void Validate(const FrameGeometry& geometry) const;
+  void ValidateTextures(const FrameGeometry& geometry) const;
   void ClearTargets();
   void Resolve();
 

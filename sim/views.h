@@ -26,6 +26,9 @@ inline ResourceTraffic& Traffic(const LaneBase& lane, int slot) {
 }
 }  // namespace detail
 
+// How samplers address texels outside [0, 1): clamp to the edge, or wrap (glTF's default).
+enum class AddressMode : std::uint8_t { Clamp, Repeat };
+
 template <typename T>
 class TextureView {
  public:
@@ -38,26 +41,33 @@ class TextureView {
     CountFetch(lane, 1);
     return Texel(x, y);
   }
-  // Clamp-to-edge addressing, uv in [0, 1] over the texture.
-  T SamplePoint(const LaneBase& lane, glm::vec2 uv) const {
+  // uv in [0, 1] spans the texture; outside it the address mode applies.
+  T SamplePoint(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp) const {
     CountFetch(lane, 1);
     const glm::vec2 texel = uv * glm::vec2(Width(), Height());
-    return Texel(ClampX(static_cast<int>(std::floor(texel.x))), ClampY(static_cast<int>(std::floor(texel.y))));
+    return Texel(Address(static_cast<int>(std::floor(texel.x)), Width(), mode),
+                 Address(static_cast<int>(std::floor(texel.y)), Height(), mode));
   }
-  T SampleBilinear(const LaneBase& lane, glm::vec2 uv) const {
+  // Texel centres at +0.5, the same weights as scenes::SampleBilinearRepeat for Repeat.
+  T SampleBilinear(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp) const {
     CountFetch(lane, 4);
     const glm::vec2 texel = uv * glm::vec2(Width(), Height()) - 0.5f;
     const glm::vec2 base = glm::floor(texel);
     const glm::vec2 f = texel - base;
     const int x0 = static_cast<int>(base.x), y0 = static_cast<int>(base.y);
-    const T top = Texel(ClampX(x0), ClampY(y0)) * (1.0f - f.x) + Texel(ClampX(x0 + 1), ClampY(y0)) * f.x;
-    const T bottom = Texel(ClampX(x0), ClampY(y0 + 1)) * (1.0f - f.x) + Texel(ClampX(x0 + 1), ClampY(y0 + 1)) * f.x;
+    const int x1 = Address(x0 + 1, Width(), mode), y1 = Address(y0 + 1, Height(), mode);
+    const int xa = Address(x0, Width(), mode), ya = Address(y0, Height(), mode);
+    const T top = Texel(xa, ya) * (1.0f - f.x) + Texel(x1, ya) * f.x;
+    const T bottom = Texel(xa, y1) * (1.0f - f.x) + Texel(x1, y1) * f.x;
     return top * (1.0f - f.y) + bottom * f.y;
   }
 
  private:
-  int ClampX(int x) const { return std::clamp(x, 0, Width() - 1); }
-  int ClampY(int y) const { return std::clamp(y, 0, Height() - 1); }
+  static int Address(int i, int size, AddressMode mode) {
+    if (mode == AddressMode::Clamp) return std::clamp(i, 0, size - 1);
+    const int r = i % size;
+    return r < 0 ? r + size : r;
+  }
   // One fetch instruction reading `texels` texels (the footprint; touched lines come from Texel).
   void CountFetch(const LaneBase& lane, int texels) const {
     ResourceTraffic& traffic = detail::Traffic(lane, slot_);

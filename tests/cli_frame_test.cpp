@@ -30,6 +30,7 @@
 #include "cli_test_util.h"
 #include "fmask/eqaa_surface.h"
 #include "raster/counters.h"
+#include "scenes/shading.h"
 #include "sim/counters.h"
 #include "sim/dispatch.h"
 #include "sim/frame.h"
@@ -39,7 +40,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using cli::testing::BadInput;
 using cli::testing::CommandResult;
+using cli::testing::ExpectRefused;
 using cli::testing::ExrChannelNames;
 using cli::testing::FilesIn;
 using cli::testing::ReadExrChannels;
@@ -283,16 +286,6 @@ TEST_F(CliFrameTest, HelpExplainsEveryOption) {
 
 // --- Every bad input: exit code, one stderr line naming the input, no output directory. ---
 
-struct BadInput {
-  std::string name;
-  // Extra arguments after `frame --width 64 --height 48 --out DIR`.
-  std::function<std::vector<std::string>(const fs::path& scratch)> args;
-  std::string named;   // stderr must name the input...
-  std::string reason;  // ...and say this about it
-  int exitCode;
-};
-
-void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
 
 std::vector<BadInput> BadInputs() {
   const auto fixed = [](std::vector<std::string> args) {
@@ -327,20 +320,8 @@ class CliFrameBadInputTest : public cli::testing::ScratchDirTest,
                              public ::testing::WithParamInterface<BadInput> {};
 
 TEST_P(CliFrameBadInputTest, FailsWithOneLineNamingTheInputAndCreatesNothing) {
-  const BadInput& input = GetParam();
   const fs::path out = scratch_ / "out";
-  std::vector<std::string> args{"frame", "--width", "64", "--height", "48", "--out", out.string()};
-  const std::vector<std::string> extra = input.args(scratch_);
-  args.insert(args.end(), extra.begin(), extra.end());
-
-  const CommandResult run = RunAasim(args, scratch_);
-  EXPECT_EQ(run.exitCode, input.exitCode) << run.err;
-  ASSERT_FALSE(run.err.empty());
-  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-  EXPECT_EQ(run.err.back(), '\n');
-  EXPECT_NE(run.err.find(input.named), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find(input.reason), std::string::npos) << run.err;
-  EXPECT_EQ(run.err.rfind(input.exitCode == 2 ? "aasim frame: " : "aasim: ", 0), 0u) << run.err;
+  const CommandResult run = ExpectRefused("frame", GetParam(), scratch_, out);
   EXPECT_FALSE(fs::exists(out)) << run.err;
 }
 
@@ -547,38 +528,26 @@ TEST(CliFrameDispatchOutput, HeatMapStemsAreFileNamesInRunOrder) {
 
 // --- Frame inputs from a scene (cli/frame_input.h). ---
 
-TEST(CliFrameInput, SmoothNormalsAreAreaWeightedAndNeverZero) {
-  // A flat quad in z = 0, counter-clockwise seen from +z, and one unused vertex.
-  const std::vector<glm::vec3> flat{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {5, 5, 5}};
-  const std::vector<glm::vec3> normals =
-      cli::SmoothNormals(flat, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
-  for (const glm::vec3& n : normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
-
-  // A roof: a big face tilted towards +x and a small one towards -y share edge 0-1; their shared
-  // vertices lean towards the big face.
-  const std::vector<glm::vec3> roof{{0, 0, 0}, {0, 0, 1}, {4, 0, 0}, {0, -1, 0}};
-  const std::vector<glm::vec3> leaning =
-      cli::SmoothNormals(roof, std::vector<std::uint32_t>{0, 2, 1, 0, 1, 3});
-  EXPECT_NEAR(glm::length(leaning[0]), 1.0f, 1e-6f);
-  EXPECT_GT(std::abs(leaning[0].y), std::abs(leaning[0].x));
-}
-
 TEST(CliFrameInput, ObjectIdsAreMeshIndicesAndColoursComeFromThePalette) {
   scenes::Scene scene;
   scene.name = "two meshes";
   scenes::Mesh withNormals{.name = "a",
                            .positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
                            .normals = {{0, 0, -1}, {0, 0, -1}, {0, 0, -1}},
-                           .indices = {0, 1, 2}};
+                           .texcoords = {},
+                           .indices = {0, 1, 2},
+                           .material = -1};
   scenes::Mesh without{.name = "b",
                        .positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}},
                        .normals = {},
-                       .indices = {0, 1, 2, 1, 3, 2}};
+                       .texcoords = {},
+                       .indices = {0, 1, 2, 1, 3, 2},
+                       .material = -1};
   scene.meshes = {withNormals, without};
   const cli::FrameScene frame = cli::ToFrameScene(scene, 1.0f);
   EXPECT_EQ(frame.objectIds, (std::vector<std::uint32_t>{0, 1, 1}));
   EXPECT_EQ(frame.baseColours,
-            (std::vector<glm::vec3>{cli::kMeshPalette[0], cli::kMeshPalette[1]}));
+            (std::vector<glm::vec3>{scenes::kMeshPalette[0], scenes::kMeshPalette[1]}));
   ASSERT_EQ(frame.normals.size(), 7u);
   EXPECT_EQ(frame.normals[0], glm::vec3(0, 0, -1));  // the mesh's own normals are kept
   EXPECT_EQ(frame.normals[3], glm::vec3(0, 0, 1));   // computed ones face the front

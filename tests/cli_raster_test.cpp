@@ -36,7 +36,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using cli::testing::BadInput;
 using cli::testing::CommandResult;
+using cli::testing::ExpectRefused;
 using cli::testing::ExrChannelNames;
 using cli::testing::FilesIn;
 using cli::testing::ReadExrChannels;
@@ -352,17 +354,7 @@ TEST_F(CliRasterTest, EqaaOutputsAreIdenticalWithOneAndTwoThreads) {
 
 // --- Every bad input: exit code, one stderr line naming the input, no output files. ---
 
-struct BadInput {
-  std::string name;
-  // Extra arguments after `raster --out DIR`; may write input files into the scratch dir.
-  std::function<std::vector<std::string>(const fs::path& scratch)> args;
-  std::string named;   // stderr must name the input...
-  std::string reason;  // ...and say this about it, so it failed for the intended reason
-  int exitCode;
-};
-
 // Names the case in test listings instead of gtest's byte dump.
-void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
 
 std::vector<BadInput> BadInputs() {
   const auto fixed = [](std::vector<std::string> args) {
@@ -442,20 +434,8 @@ class CliRasterBadInputTest : public CliRasterTest,
                               public ::testing::WithParamInterface<BadInput> {};
 
 TEST_P(CliRasterBadInputTest, FailsWithOneLineNamingTheInputAndWritesNothing) {
-  const BadInput& input = GetParam();
   const fs::path out = scratch_ / "out";
-  std::vector<std::string> args{"raster", "--width", "64", "--height", "48", "--out", out.string()};
-  const std::vector<std::string> extra = input.args(scratch_);
-  args.insert(args.end(), extra.begin(), extra.end());
-
-  const CommandResult run = RunAasim(args, scratch_);
-  EXPECT_EQ(run.exitCode, input.exitCode) << run.err;
-  ASSERT_FALSE(run.err.empty());
-  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-  EXPECT_EQ(run.err.back(), '\n');
-  EXPECT_NE(run.err.find(input.named), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find(input.reason), std::string::npos) << run.err;
-  EXPECT_EQ(run.err.rfind(input.exitCode == 2 ? "aasim raster: " : "aasim: ", 0), 0u) << run.err;
+  const CommandResult run = ExpectRefused("raster", GetParam(), scratch_, out);
   EXPECT_EQ(FilesIn(out), std::vector<std::string>{}) << run.err;
 }
 

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -122,5 +123,39 @@ class ScratchDirTest : public ::testing::Test {
 
   fs::path scratch_;
 };
+
+// A bad-input case of a subcommand: extra arguments after
+// `COMMAND --width 64 --height 48 --out DIR` (they may write input files into the scratch dir),
+// what stderr must name, why, and the exit code.
+struct BadInput {
+  std::string name;
+  std::function<std::vector<std::string>(const fs::path& scratch)> args;
+  std::string named;   // stderr must name the input...
+  std::string reason;  // ...and say this about it, so it failed for the intended reason
+  int exitCode;
+};
+
+// gtest names failing parameters by this instead of dumping the struct's bytes.
+inline void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
+// Runs the case and checks the refusal: its exit code and exactly one stderr line, prefixed
+// "aasim COMMAND: " for usage errors (exit 2) and "aasim: " otherwise, naming the input and the
+// reason. Returns the run so the caller can check what was (not) written to `out`.
+inline CommandResult ExpectRefused(const std::string& command, const BadInput& input, const fs::path& scratch,
+                                   const fs::path& out) {
+  std::vector<std::string> args{command, "--width", "64", "--height", "48", "--out", out.string()};
+  const std::vector<std::string> extra = input.args(scratch);
+  args.insert(args.end(), extra.begin(), extra.end());
+  const CommandResult run = RunAasim(args, scratch);
+  EXPECT_EQ(run.exitCode, input.exitCode) << run.err;
+  EXPECT_FALSE(run.err.empty());
+  if (run.err.empty()) return run;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_EQ(run.err.back(), '\n');
+  EXPECT_NE(run.err.find(input.named), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(input.reason), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.rfind(input.exitCode == 2 ? "aasim " + command + ": " : "aasim: ", 0), 0u) << run.err;
+  return run;
+}
 
 }  // namespace cli::testing

@@ -77,6 +77,51 @@ TEST(SimFrame, MaterialKernelShadesLambertAndWritesPixelTargets) {
   EXPECT_GT(report.fragments->pixelUpdates, 0u);
 }
 
+TEST(SimFrame, TexturedObjectsMultiplyTheFactorByABilinearSample) {
+  const int w = 32, h = 32;
+  Rect rect;
+  AddRect(rect, 3.5, 3.5, 27.5, 27.5, 0.5, glm::vec3(0, 0, 1), 0, w, h);
+  // AddRect's corners: (x0,y1), (x1,y1), (x1,y0), (x0,y0); v = 0 at the top edge.
+  const std::vector<glm::vec2> texcoords = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  Texture2D<glm::vec4> texture("checker", 2, 2, 4);
+  texture.At(0, 0) = glm::vec4(0.2f, 0.4f, 0.6f, 1.0f);
+  texture.At(1, 0) = glm::vec4(1.0f);
+  texture.At(0, 1) = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  texture.At(1, 1) = glm::vec4(0.5f);
+  const std::vector<Texture2D<glm::vec4>> textures = {texture};
+  const std::vector<glm::vec3> factors = {glm::vec3(0.5f, 1.0f, 1.0f)};
+  const std::vector<int> objectTextures = {0};
+  Machine machine(GpuConfigByName("ps4-class"));
+  FrameSettings settings = SmallSettings(w, h);
+  FramePipeline frame(machine, settings);
+  const DispatchReport report = frame.Render({.clipPositions = rect.clip,
+                                              .previousClipPositions = {},
+                                              .normals = rect.normals,
+                                              .indices = rect.indices,
+                                              .objectIds = rect.objects,
+                                              .baseColours = factors,
+                                              .texcoords = texcoords,
+                                              .baseColourTextures = objectTextures,
+                                              .textures = textures});
+  // Pixel (9, 9) has its centre at uv (0.25, 0.25): exactly texel (0, 0).
+  const float lambert = std::max(0.0f, glm::dot(glm::vec3(0, 0, 1), glm::normalize(settings.towardsLight)));
+  const glm::vec3 expected = factors[0] * glm::vec3(0.2f, 0.4f, 0.6f) * (settings.ambient + (1 - settings.ambient) * lambert);
+  const glm::vec4 got = frame.Colour().At(9, 9);
+  EXPECT_NEAR(got.r, expected.r, 1e-6f);
+  EXPECT_NEAR(got.g, expected.g, 1e-6f);
+  EXPECT_NEAR(got.b, expected.b, 1e-6f);
+  // One bilinear fetch per shaded lane, four texels each.
+  ASSERT_EQ(report.resources.back().name, "checker");
+  EXPECT_EQ(report.resources.back().fetches, report.lanes.lanesActive + report.lanes.lanesHelper);
+  EXPECT_EQ(report.resources.back().bytesRead, 16 * report.resources.back().fetches);
+
+  const std::vector<int> missing = {3};
+  EXPECT_THROW(frame.Render({.clipPositions = rect.clip, .previousClipPositions = {}, .normals = rect.normals,
+                             .indices = rect.indices, .objectIds = rect.objects, .baseColours = factors,
+                             .texcoords = texcoords, .baseColourTextures = missing, .textures = textures}),
+               std::invalid_argument);
+}
+
 TEST(SimFrame, VelocityIsCurrentMinusPreviousScreenPosition) {
   const int w = 32, h = 32;
   Rect now, before;

@@ -1,0 +1,184 @@
+// The self-contained HTML report (see report_html.h).
+
+#include "cli/report_html.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace cli {
+
+namespace {
+
+// Eight colours distinguishable in print and by most colour-blind readers (Okabe-Ito).
+constexpr const char* kSeriesColours[] = {"#0072B2", "#E69F00", "#009E73", "#D55E00",
+                                          "#CC79A7", "#56B4E9", "#F0E442", "#000000"};
+
+constexpr const char* kStyle = R"(body{font-family:system-ui,sans-serif;margin:2em;max-width:1400px;color:#222}
+h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
+figure{display:inline-block;margin:.5em;vertical-align:top}figcaption{font-size:.85em;text-align:center}
+img.zoom{image-rendering:pixelated}table{border-collapse:collapse;margin:.8em 0;font-size:.9em}
+th,td{border:1px solid #ccc;padding:.25em .6em;text-align:right}th:first-child,td:first-child{text-align:left}
+th{background:#f2f2f2}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}
+svg text{font-family:system-ui,sans-serif;font-size:12px})";
+
+// Counts images that decoded; the headless-browser test reads the attribute after load.
+constexpr const char* kImageCheck = R"(window.addEventListener('load',function(){
+var imgs=document.images,ok=0;for(var i=0;i<imgs.length;i++){if(imgs[i].complete&&imgs[i].naturalWidth>0)ok++;}
+document.body.setAttribute('data-images',ok+'/'+imgs.length);});)";
+
+std::string Format(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", value);
+  return buffer;
+}
+
+void CheckChart(const BarChart& chart) {
+  if (chart.values.size() != chart.series.size()) {
+    throw std::invalid_argument("chart '" + chart.title + "': " + std::to_string(chart.values.size()) +
+                                " value rows for " + std::to_string(chart.series.size()) + " series");
+  }
+  for (const std::vector<double>& row : chart.values) {
+    if (row.size() != chart.categories.size()) {
+      throw std::invalid_argument("chart '" + chart.title + "': a series has " + std::to_string(row.size()) +
+                                  " values for " + std::to_string(chart.categories.size()) + " categories");
+    }
+    for (const double v : row) {
+      if (!std::isfinite(v) || v < 0.0) {
+        throw std::invalid_argument("chart '" + chart.title + "': value " + Format(v) + " is not finite and >= 0");
+      }
+    }
+  }
+}
+
+std::string RenderChart(const BarChart& chart) {
+  CheckChart(chart);
+  constexpr int kLabelWidth = 260, kPlotWidth = 560, kBarHeight = 14, kGap = 10, kLegend = 24;
+  const std::size_t barsPerGroup = chart.stacked ? 1 : chart.series.size();
+  const int groupHeight = static_cast<int>(barsPerGroup) * kBarHeight + kGap;
+  double maximum = 0.0;
+  for (std::size_t c = 0; c < chart.categories.size(); ++c) {
+    double stack = 0.0;
+    for (std::size_t s = 0; s < chart.series.size(); ++s) {
+      stack += chart.values[s][c];
+      maximum = std::max(maximum, chart.stacked ? stack : chart.values[s][c]);
+    }
+  }
+  if (maximum <= 0.0) maximum = 1.0;
+  const int height = kLegend + static_cast<int>(chart.categories.size()) * groupHeight + 20;
+  std::ostringstream svg;
+  svg << "<svg width='" << kLabelWidth + kPlotWidth + 90 << "' height='" << height
+      << "' role='img' aria-label='" << EscapeHtml(chart.title) << "'>";
+  for (std::size_t s = 0; s < chart.series.size(); ++s) {
+    const int x = static_cast<int>(s) * 150;
+    svg << "<rect x='" << x << "' y='4' width='12' height='12' fill='" << kSeriesColours[s % 8] << "'/>"
+        << "<text x='" << x + 16 << "' y='14'>" << EscapeHtml(chart.series[s]) << "</text>";
+  }
+  for (std::size_t c = 0; c < chart.categories.size(); ++c) {
+    const int top = kLegend + static_cast<int>(c) * groupHeight;
+    svg << "<text x='0' y='" << top + kBarHeight - 2 << "'>" << EscapeHtml(chart.categories[c]) << "</text>";
+    double offset = 0.0;
+    for (std::size_t s = 0; s < chart.series.size(); ++s) {
+      const double value = chart.values[s][c];
+      const double x = kLabelWidth + (chart.stacked ? offset : 0.0) / maximum * kPlotWidth;
+      const double width = value / maximum * kPlotWidth;
+      const int y = top + (chart.stacked ? 0 : static_cast<int>(s) * kBarHeight);
+      svg << "<rect x='" << Format(x) << "' y='" << y << "' width='" << Format(width) << "' height='"
+          << kBarHeight - 2 << "' fill='" << kSeriesColours[s % 8] << "'><title>" << EscapeHtml(chart.series[s])
+          << ": " << Format(value) << ' ' << EscapeHtml(chart.unit) << "</title></rect>";
+      if (!chart.stacked) {
+        svg << "<text x='" << Format(x + width + 4) << "' y='" << y + kBarHeight - 3 << "'>" << Format(value)
+            << "</text>";
+      }
+      offset += value;
+    }
+  }
+  svg << "<text x='" << kLabelWidth << "' y='" << height - 4 << "'>0</text><text x='" << kLabelWidth + kPlotWidth - 40
+      << "' y='" << height - 4 << "'>" << Format(maximum) << ' ' << EscapeHtml(chart.unit) << "</text></svg>";
+  return "<figure><figcaption>" + EscapeHtml(chart.title) + "</figcaption>" + svg.str() + "</figure>";
+}
+
+std::string RenderImage(const ReportImage& image) {
+  const bool zoomed = image.displayScale > 1;
+  std::ostringstream html;
+  html << "<figure><img" << (zoomed ? " class='zoom'" : "") << " width='" << image.width * image.displayScale
+       << "' height='" << image.height * image.displayScale << "' alt='" << EscapeHtml(image.title)
+       << "' src='data:image/png;base64," << Base64(image.png) << "'><figcaption>" << EscapeHtml(image.title)
+       << (zoomed ? " (x" + std::to_string(image.displayScale) + ")" : "") << "</figcaption></figure>";
+  return html.str();
+}
+
+std::string RenderTable(const ReportTable& table) {
+  std::ostringstream html;
+  html << "<table><caption>" << EscapeHtml(table.title) << "</caption><tr>";
+  for (const std::string& h : table.header) html << "<th>" << EscapeHtml(h) << "</th>";
+  html << "</tr>";
+  for (const std::vector<std::string>& row : table.rows) {
+    html << "<tr>";
+    for (const std::string& cell : row) html << "<td>" << EscapeHtml(cell) << "</td>";
+    html << "</tr>";
+  }
+  html << "</table>";
+  return html.str();
+}
+
+}  // namespace
+
+std::string EscapeHtml(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// RFC 4648 base64 with padding.
+std::string Base64(const std::vector<std::uint8_t>& bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t b0 = bytes[i];
+    const std::uint32_t b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
+    const std::uint32_t b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    const std::uint32_t triple = b0 << 16 | b1 << 8 | b2;
+    out += kAlphabet[triple >> 18 & 63];
+    out += kAlphabet[triple >> 12 & 63];
+    out += i + 1 < bytes.size() ? kAlphabet[triple >> 6 & 63] : '=';
+    out += i + 2 < bytes.size() ? kAlphabet[triple & 63] : '=';
+  }
+  return out;
+}
+
+std::string RenderHtml(const Report& report) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>" << EscapeHtml(report.title)
+       << "</title><style>" << kStyle << "</style></head><body><h1>" << EscapeHtml(report.title) << "</h1>";
+  for (const ReportSection& section : report.sections) {
+    html << "<section><h2>" << EscapeHtml(section.title) << "</h2>";
+    for (const std::string& p : section.paragraphs) html << "<p>" << EscapeHtml(p) << "</p>";
+    if (!section.images.empty()) {
+      html << "<div>";
+      for (const ReportImage& image : section.images) html << RenderImage(image);
+      html << "</div>";
+    }
+    for (const BarChart& chart : section.charts) html << RenderChart(chart);
+    for (const ReportTable& table : section.tables) html << RenderTable(table);
+    html << "</section>";
+  }
+  html << "<section><h2>Configuration</h2><pre>" << EscapeHtml(report.configurationJson) << "</pre></section><script>"
+       << kImageCheck << "</script></body></html>\n";
+  return html.str();
+}
+
+}  // namespace cli
