@@ -3,7 +3,9 @@
 // "Performance architecture"); chunks run in parallel and are merged in order by Machine::Finish.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
@@ -118,15 +120,36 @@ void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
     }
     PackPixelWaves(quads, targets.flush, packed, chunk.lanes);
     for (std::size_t wave = 0; wave < packed.WaveCount(); ++wave) {
-      int active = 0;
       const std::uint32_t first = packed.waveStarts[wave], last = packed.waveStarts[wave + 1];
+      // First pass: every lane's kind and the wave's EXEC mask, before any lane runs, so a kernel
+      // reading a quad neighbour's helper flag or the mask sees the final value, as on the
+      // hardware where EXEC is set before the shader starts (hw-facts §6.1).
+      std::array<LaneKind, kWaveLanes> kinds{};
+      std::uint64_t exec = 0;
+      int active = 0;
+      for (std::uint32_t k = first; k < last; ++k) {
+        const raster::QuadFragment& quad = quads[packed.quads[k]];
+        for (int p = 0; p < raster::kQuadPixels; ++p) {
+          const int laneIndex = static_cast<int>(k - first) * raster::kQuadPixels + p;
+          const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
+          kinds[static_cast<std::size_t>(laneIndex)] = laneKind;
+          chunk.lanes.CountLane(laneKind);
+          chunk.heat->Add(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
+          const bool runs = laneKind == LaneKind::Active || laneKind == LaneKind::Helper;
+          exec |= static_cast<std::uint64_t>(runs) << laneIndex;
+          active += laneKind == LaneKind::Active;
+        }
+      }
       for (std::uint32_t k = first; k < last; ++k) {
         const std::uint32_t quadIndex = packed.quads[k];
         const raster::QuadFragment& quad = quads[quadIndex];
+        // The whole quad is set up before any of its lanes runs: derivatives read neighbours.
         std::array<PixelLane, raster::kQuadPixels> lanes;
         for (int p = 0; p < raster::kQuadPixels; ++p) {
           PixelLane& lane = lanes[static_cast<std::size_t>(p)];
           lane.lane = static_cast<int>(k - first) * raster::kQuadPixels + p;
+          lane.helper = kinds[static_cast<std::size_t>(lane.lane)] == LaneKind::Helper;
+          lane.exec = exec;
           lane.chunk = &chunk;
           lane.x = quad.x + (p & 1);
           lane.y = quad.y + (p >> 1);
@@ -139,12 +162,7 @@ void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
         }
         for (int p = 0; p < raster::kQuadPixels; ++p) {
           PixelLane& lane = lanes[static_cast<std::size_t>(p)];
-          const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
-          chunk.lanes.CountLane(laneKind);
-          chunk.heat->Add(lane.x, lane.y, laneKind);
-          if (laneKind != LaneKind::Active && laneKind != LaneKind::Helper) continue;
-          lane.helper = laneKind == LaneKind::Helper;
-          active += laneKind == LaneKind::Active;
+          if (((exec >> lane.lane) & 1U) == 0) continue;
           if constexpr (std::is_void_v<Export>) {
             kernel(lane);
           } else {
@@ -219,11 +237,13 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
     std::vector<ComputeLane> lanes(static_cast<std::size_t>(groupThreads));
     std::vector<glm::ivec2> attribution(static_cast<std::size_t>(groupThreads));
     std::vector<std::uint8_t> live(static_cast<std::size_t>(groupThreads));
+    std::vector<std::uint64_t> waveExec(static_cast<std::size_t>(wavesPerGroup));
     const std::size_t end = std::min(groupCount, (chunkIndex + 1) * kGroupsPerChunk);
     for (std::size_t g = chunkIndex * kGroupsPerChunk; g < end; ++g) {
       const auto gi = static_cast<int>(g);
       const glm::ivec3 groupId{gi % groups.x, (gi / groups.x) % groups.y, gi / (groups.x * groups.y)};
       std::fill(chunk.lds.begin(), chunk.lds.end(), std::byte{0});
+      std::fill(waveExec.begin(), waveExec.end(), std::uint64_t{0});
       for (int i = 0; i < groupThreads; ++i) {
         ComputeLane& lane = lanes[static_cast<std::size_t>(i)];
         lane.chunk = &chunk;
@@ -240,6 +260,13 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
         attribution[static_cast<std::size_t>(i)] =
             live[static_cast<std::size_t>(i)] && dispatch.pixelGrid_ ? glm::ivec2(lane.threadId) : glm::ivec2(-1);
         lane.attribution = &attribution[static_cast<std::size_t>(i)];
+        if (live[static_cast<std::size_t>(i)]) {
+          waveExec[static_cast<std::size_t>(lane.waveInGroup)] |= std::uint64_t{1} << lane.lane;
+        }
+      }
+      // Every wave's mask is complete before the first stage runs any lane of it.
+      for (int i = 0; i < groupThreads; ++i) {
+        lanes[static_cast<std::size_t>(i)].exec = waveExec[static_cast<std::size_t>(i / kWaveLanes)];
       }
       auto runStage = [&](auto& stage) {
         for (int i = 0; i < groupThreads; ++i) {

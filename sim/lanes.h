@@ -1,6 +1,7 @@
 #pragma once
-// What a kernel sees when it runs on one lane: its lane index, whether it is a helper, and the
-// pixel (with quad neighbours for derivatives) or the compute thread (with group shared memory).
+// What a kernel sees when it runs on one lane: its lane index, whether it is a helper, its
+// wave's EXEC mask, and the pixel (with quad neighbours for derivatives) or the compute thread
+// (with group shared memory).
 // Kernels are C++ callables taking a PixelLane& or ComputeLane&; resource views (sim/views.h)
 // take the lane so they can count traffic into the lane's chunk without locks.
 
@@ -46,6 +47,10 @@ struct ChunkState {
 struct LaneBase {
   int lane = 0;         // 0..63 within the wave
   bool helper = false;  // helper lanes run for derivatives; views drop their stores
+  // The wave's EXEC mask while the kernel runs: bit i set when lane i runs it (active or helper;
+  // whole-quad mode, hw-facts §6.1). The same for every lane of a wave, so a kernel can ask
+  // whether a quad neighbour or any other lane executes.
+  std::uint64_t exec = 0;
   detail::ChunkState* chunk = nullptr;
 };
 
@@ -66,9 +71,12 @@ struct PixelLane : LaneBase {
   std::array<float, 3> Barycentrics() const;
   std::array<float, 3> CentroidBarycentrics() const;
 
+  // Every lane of the quad, helper flag included, is set up before any of them runs, so a
+  // neighbour read here is never stale.
   const PixelLane& QuadLane(int pixel) const { return (*quadLanes)[static_cast<std::size_t>(pixel)]; }
-  // Coarse derivatives within the quad, as GCN computes them: f is evaluated on the lanes of
-  // this lane's row (Ddx) or column (Ddy) and differenced, +x and +y positive.
+  // Fine derivatives within the quad (ddx_fine/ddy_fine, quad-permute differences on GCN): f is
+  // evaluated on the lanes of this lane's own row (Ddx) or column (Ddy) and differenced, +x and
+  // +y positive.
   template <typename F>
   auto Ddx(F&& f) const {
     const int row = quadPixel & 2;

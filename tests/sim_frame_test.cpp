@@ -6,6 +6,15 @@
 
 #include <tbb/global_control.h>
 
+#include <cstddef>
+#include <cstring>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
 #include <glm/geometric.hpp>
 
 #include "passes/demo_edge_blend.h"
@@ -154,10 +163,53 @@ TEST(SimFrame, RefusesInconsistentGeometry) {
   EXPECT_THROW(FramePipeline(machine, impossible), std::invalid_argument);
 }
 
+// The bytes of an image, for bit-for-bit comparison (-0.0 vs 0.0 and NaN payloads count).
+template <typename T>
+std::vector<std::byte> Bytes(const Texture2D<T>& texture) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const std::span<const T> texels = texture.Texels();
+  std::vector<std::byte> bytes(texels.size_bytes());
+  std::memcpy(bytes.data(), texels.data(), bytes.size());
+  return bytes;
+}
+
+template <typename T>
+void AppendBytes(std::vector<std::byte>& out, const T& value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &value, sizeof(T));
+}
+
+// The EQAA surface field by field (FragmentSlot has padding, so no whole-struct copies): per
+// pixel the FMASK element, every fragment slot and every sample's UNKNOWN cause.
+std::vector<std::byte> EqaaBytes(const fmask::EqaaSurface& surface) {
+  std::vector<std::byte> out;
+  for (int y = 0; y < surface.Height(); ++y) {
+    for (int x = 0; x < surface.Width(); ++x) {
+      AppendBytes(out, surface.Fmask(x, y));
+      for (int slot = 0; slot < surface.Config().fragments; ++slot) {
+        const fmask::FragmentSlot& fragment = surface.Slot(x, y, slot);
+        AppendBytes(out, static_cast<std::uint8_t>(fragment.occupied));
+        AppendBytes(out, fragment.primitiveId);
+        AppendBytes(out, fragment.colour);
+      }
+      for (int sample = 0; sample < surface.Config().coverageSamples; ++sample) {
+        AppendBytes(out, surface.Cause(x, y, sample));
+      }
+    }
+  }
+  return out;
+}
+
 // A frame of random overlapping rectangles, then the demo pass under both strategies.
 struct FrameRun {
   std::vector<DispatchReport> reports;
   std::vector<glm::vec4> colour, stencilOutput, queueOutput;
+  // Every other image the frame and the passes produce, as raw bytes.
+  std::vector<std::pair<std::string, std::vector<std::byte>>> images;
+  int pixelsWithTwoFragments = 0;
+  std::uint64_t edgePixels = 0;
 };
 
 FrameRun RunFrame(int threads) {
@@ -166,15 +218,20 @@ FrameRun RunFrame(int threads) {
   raster::testing::Random rng(7);
   Rect rect;
   std::vector<glm::vec3> colours;
+  std::vector<glm::vec4> previous;
   for (std::uint32_t i = 0; i < 40; ++i) {
     const double x = rng.Uniform(-10, w), y = rng.Uniform(-10, h);
     AddRect(rect, x, y, x + rng.Uniform(1, 60), y + rng.Uniform(0.3, 40), rng.Uniform(0.1, 0.9),
             glm::normalize(glm::vec3(rng.Uniform(-1, 1), rng.Uniform(-1, 1), 1.0)), i, w, h);
     colours.emplace_back(rng.Uniform(0, 1), rng.Uniform(0, 1), rng.Uniform(0, 1));
   }
+  // Previous positions shifted per vertex, so velocity is not one constant.
+  for (std::size_t v = 0; v < rect.clip.size(); ++v) {
+    previous.push_back(rect.clip[v] + glm::vec4(0.01f * static_cast<float>(v % 7), -0.02f * static_cast<float>(v % 5), 0, 0));
+  }
   Machine machine(GpuConfigByName("ps4-class"));
   FramePipeline frame(machine, SmallSettings(w, h));
-  frame.Render({rect.clip, {}, rect.normals, rect.indices, rect.objects, colours});
+  frame.Render({rect.clip, previous, rect.normals, rect.indices, rect.objects, colours});
   const passes::DemoEdgeBlendResult stencil =
       passes::RunDemoEdgeBlend(machine, frame.Colour(), passes::Strategy::StencilCulled);
   const passes::DemoEdgeBlendResult queue =
@@ -182,7 +239,22 @@ FrameRun RunFrame(int threads) {
   FrameRun run{{machine.Reports().begin(), machine.Reports().end()},
                {frame.Colour().Texels().begin(), frame.Colour().Texels().end()},
                {stencil.output.Texels().begin(), stencil.output.Texels().end()},
-               {queue.output.Texels().begin(), queue.output.Texels().end()}};
+               {queue.output.Texels().begin(), queue.output.Texels().end()},
+               {{"colour", Bytes(frame.Colour())},
+                {"depth", Bytes(frame.Depth())},
+                {"normal", Bytes(frame.Normal())},
+                {"object id", Bytes(frame.ObjectId())},
+                {"velocity", Bytes(frame.Velocity())},
+                {"eqaa surface", EqaaBytes(frame.Eqaa())},
+                {"stencil output", Bytes(stencil.output)},
+                {"stencil edges", Bytes(stencil.edges)},
+                {"queue output", Bytes(queue.output)},
+                {"queue edges", Bytes(queue.edges)}},
+               0,
+               stencil.edgePixels};
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) run.pixelsWithTwoFragments += frame.Eqaa().FragmentCount(x, y) >= 2;
+  }
   return run;
 }
 
@@ -195,6 +267,28 @@ TEST(SimFrame, CountersAndImagesDoNotDependOnTheThreadCount) {
   EXPECT_EQ(one.queueOutput, two.queueOutput);
   EXPECT_EQ(one.stencilOutput, one.queueOutput);
   ASSERT_EQ(one.reports.size(), 1u + 2u + 3u);
+  // Bit for bit, every target and the EQAA surface; the scene must exercise them, or equality
+  // would prove nothing (edges found, pixels holding two fragments).
+  EXPECT_GT(one.edgePixels, 0u);
+  EXPECT_GT(one.pixelsWithTwoFragments, 0);
+  ASSERT_EQ(one.images.size(), two.images.size());
+  for (std::size_t i = 0; i < one.images.size(); ++i) {
+    const std::vector<std::byte>& a = one.images[i].second;
+    const std::vector<std::byte>& b = two.images[i].second;
+    ASSERT_EQ(one.images[i].first, two.images[i].first);
+    ASSERT_EQ(a.size(), b.size()) << one.images[i].first;
+    EXPECT_GT(a.size(), 0u) << one.images[i].first;
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size()), 0) << one.images[i].first;
+  }
+  const auto image = [&](const std::string& name) -> const std::vector<std::byte>& {
+    for (const auto& [imageName, bytes] : one.images) {
+      if (imageName == name) return bytes;
+    }
+    throw std::logic_error("no image " + name);
+  };
+  ASSERT_EQ(image("stencil edges").size(), image("queue edges").size());
+  EXPECT_EQ(std::memcmp(image("stencil edges").data(), image("queue edges").data(), image("queue edges").size()), 0)
+      << "both strategies find the same edges";
 }
 
 }  // namespace
