@@ -44,10 +44,11 @@ std::vector<EqaaConfig> LegalEqaaConfigs() {
 }
 
 void ValidateEqaaConfig(const EqaaConfig& config) {
+  if (config == kSingleSample) return;
   const std::vector<EqaaConfig> legal = LegalEqaaConfigs();
   if (std::find(legal.begin(), legal.end(), config) != legal.end()) return;
-  std::string list;
-  for (const EqaaConfig& c : legal) list += (list.empty() ? "" : ", ") + EqaaName(c);
+  std::string list = EqaaName(kSingleSample) + " (single sample, no FMASK)";
+  for (const EqaaConfig& c : legal) list += ", " + EqaaName(c);
   throw std::invalid_argument(EqaaName(config) + " is not a supported EQAA mode (need an FMASK layout for S and F, " +
                               "and F <= Z <= min(S, 8)); legal: " + list);
 }

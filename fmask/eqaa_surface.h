@@ -24,8 +24,14 @@ struct EqaaConfig {
   friend bool operator==(const EqaaConfig&, const EqaaConfig&) = default;
 };
 
-// Legal: an FMASK layout exists for (S, F) (hw-facts §1.1) and F <= Z <= min(S, 8) with Z a
-// power of two (hw-facts §2.2). Throws std::invalid_argument listing every legal S/Z/F.
+// The aliased baseline: one sample, one anchor, one fragment, no FMASK (hw-facts §1.1 defines
+// FMASK from 2 samples up). Accepted by ValidateEqaaConfig and EqaaSurface, but not one of the
+// LegalEqaaConfigs, which are the FMASK modes (fixtures are made for those).
+inline constexpr EqaaConfig kSingleSample{1, 1, 1};
+
+// Legal: kSingleSample, or an FMASK layout exists for (S, F) (hw-facts §1.1) and F <= Z <=
+// min(S, 8) with Z a power of two (hw-facts §2.2). Throws std::invalid_argument listing every
+// legal S/Z/F.
 void ValidateEqaaConfig(const EqaaConfig& config);
 std::vector<EqaaConfig> LegalEqaaConfigs();
 std::string EqaaName(const EqaaConfig& config);  // "8S/4Z/2F"

@@ -30,6 +30,9 @@ std::string LegalList() {
 }  // namespace
 
 FmaskLayout FmaskLayout::For(int coverageSamples, int fragments) {
+  // hw-facts §1.1 has FMASK only for 2+ samples: a single-sample surface keeps its one fragment
+  // and needs no codes, so its layout stores nothing (every sample reads fragment 0).
+  if (coverageSamples == 1 && fragments == 1) return FmaskLayout(1, 1, 0, 0);
   for (const LegalLayout& l : kLegal) {
     if (l.samples == coverageSamples && l.fragments == fragments) {
       return FmaskLayout(l.samples, l.fragments, l.bitsPerSample, l.elementBits);
@@ -46,6 +49,7 @@ std::vector<FmaskLayout> FmaskLayout::AllLegal() {
 }
 
 std::string FmaskLayout::FormatName() const {
+  if (elementBits_ == 0) return "none";
   return "FMASK" + std::to_string(elementBits_) + "_S" + std::to_string(samples_) + "_F" +
          std::to_string(fragments_);
 }

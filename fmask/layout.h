@@ -14,7 +14,9 @@ using FmaskElement = std::uint64_t;  // one pixel; only the low ElementBits() bi
 class FmaskLayout {
  public:
   // Throws std::invalid_argument listing the legal combinations when (S, F) does not exist.
+  // (1, 1) is the single-sample surface: no FMASK (0 bits), every sample reads fragment 0.
   static FmaskLayout For(int coverageSamples, int fragments);
+  // The hardware FMASK layouts (S >= 2), without the single-sample (1, 1).
   static std::vector<FmaskLayout> AllLegal();
 
   int CoverageSamples() const { return samples_; }
@@ -24,7 +26,7 @@ class FmaskLayout {
   bool IsEqaa() const { return fragments_ < samples_; }
   // hw-facts §1.3: UNKNOWN is stored as the code F; MSAA (F == S) has no UNKNOWN.
   int UnknownCode() const { return fragments_; }
-  std::string FormatName() const;  // e.g. "FMASK32_S8_F4" (hw-facts §1.1)
+  std::string FormatName() const;  // e.g. "FMASK32_S8_F4" (hw-facts §1.1); "none" for (1, 1)
 
   int Code(FmaskElement element, int sample) const;
   FmaskElement WithCode(FmaskElement element, int sample, int code) const;

@@ -30,7 +30,7 @@ TEST(FmaskLayout, TableMatchesHwFacts) {
 }
 
 TEST(FmaskLayout, IllegalCombinationsListTheLegalOnes) {
-  for (auto [s, f] : {std::pair{1, 1}, {2, 4}, {4, 8}, {8, 16}, {3, 1}, {16, 16}}) {
+  for (auto [s, f] : {std::pair{1, 2}, {2, 4}, {4, 8}, {8, 16}, {3, 1}, {16, 16}}) {
     try {
       FmaskLayout::For(s, f);
       ADD_FAILURE() << s << "S" << f << "F accepted";
@@ -38,6 +38,18 @@ TEST(FmaskLayout, IllegalCombinationsListTheLegalOnes) {
       EXPECT_NE(std::string(e.what()).find("legal: 2S1F, 2S2F, 4S1F"), std::string::npos) << e.what();
     }
   }
+}
+
+// A single-sample surface has one fragment and no codes to store.
+TEST(FmaskLayout, SingleSampleStoresNothing) {
+  const FmaskLayout layout = FmaskLayout::For(1, 1);
+  EXPECT_EQ(layout.ElementBits(), 0);
+  EXPECT_EQ(layout.BitsPerSample(), 0);
+  EXPECT_FALSE(layout.IsEqaa());
+  EXPECT_EQ(layout.FormatName(), "none");
+  EXPECT_EQ(layout.Code(layout.WithCode(0, 0, 1), 0), 0);
+  EXPECT_EQ(ShaderVisibleMask(layout, layout.ExpandedValue()), 0u);
+  for (const FmaskLayout& legal : FmaskLayout::AllLegal()) EXPECT_GE(legal.CoverageSamples(), 2);
 }
 
 // Every code of every sample for every layout: written then read back, neighbours untouched.
