@@ -16,18 +16,25 @@ namespace {
 constexpr const char* kSeriesColours[] = {"#0072B2", "#E69F00", "#009E73", "#D55E00",
                                           "#CC79A7", "#56B4E9", "#F0E442", "#000000"};
 
-constexpr const char* kStyle = R"(body{font-family:system-ui,sans-serif;margin:2em;max-width:1400px;color:#222}
+constexpr const char* kStyle = R"(body{font-family:system-ui,sans-serif;margin:2em;color:#222}p{max-width:75em}
 h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
 figure{display:inline-block;margin:.5em;vertical-align:top}figcaption{font-size:.85em;text-align:center}
-img.zoom{image-rendering:pixelated}table{border-collapse:collapse;margin:.8em 0;font-size:.9em}
+img.zoom{image-rendering:pixelated}img:not(.zoom){max-width:46vw;height:auto}table{border-collapse:collapse;margin:.8em 0;font-size:.9em}
 th,td{border:1px solid #ccc;padding:.25em .6em;text-align:right}th:first-child,td:first-child{text-align:left}
 th{background:#f2f2f2}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}
 svg text{font-family:system-ui,sans-serif;font-size:12px})";
 
-// Counts images that decoded; the headless-browser test reads the attribute after load.
-constexpr const char* kImageCheck = R"(window.addEventListener('load',function(){
+// Placed first in <head>. Records elements whose resource failed to load (capture-phase 'error'
+// events, which Chromium does not print to its console log), and on 'load' counts images that
+// decoded; the headless-browser test reads body attributes data-images="ok/total" and data-errors
+// (one failed element per line). Script errors and console output are left to the browser's log.
+constexpr const char* kImageCheck = R"((function(){var failed=[];
+window.addEventListener('error',function(e){var t=e.target;if(t&&t!==window&&t.tagName){
+failed.push(t.tagName.toLowerCase()+' '+(t.getAttribute('alt')||String(t.src||t.href||'').slice(0,64)));}},true);
+window.addEventListener('load',function(){
 var imgs=document.images,ok=0;for(var i=0;i<imgs.length;i++){if(imgs[i].complete&&imgs[i].naturalWidth>0)ok++;}
-document.body.setAttribute('data-images',ok+'/'+imgs.length);});)";
+document.body.setAttribute('data-images',ok+'/'+imgs.length);
+document.body.setAttribute('data-errors',failed.join('\n'));});})();)";
 
 std::string Format(double value) {
   char buffer[32];
@@ -162,7 +169,8 @@ std::string Base64(const std::vector<std::uint8_t>& bytes) {
 
 std::string RenderHtml(const Report& report) {
   std::ostringstream html;
-  html << "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>" << EscapeHtml(report.title)
+  html << "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><script>" << kImageCheck
+       << "</script><title>" << EscapeHtml(report.title)
        << "</title><style>" << kStyle << "</style></head><body><h1>" << EscapeHtml(report.title) << "</h1>";
   for (const ReportSection& section : report.sections) {
     html << "<section><h2>" << EscapeHtml(section.title) << "</h2>";
@@ -176,8 +184,8 @@ std::string RenderHtml(const Report& report) {
     for (const ReportTable& table : section.tables) html << RenderTable(table);
     html << "</section>";
   }
-  html << "<section><h2>Configuration</h2><pre>" << EscapeHtml(report.configurationJson) << "</pre></section><script>"
-       << kImageCheck << "</script></body></html>\n";
+  html << "<section><h2>Configuration</h2><pre>" << EscapeHtml(report.configurationJson)
+       << "</pre></section></body></html>\n";
   return html.str();
 }
 

@@ -1,0 +1,146 @@
+// The HTML report in a real browser (headless Chromium): a rendered report loads without console
+// output or failed resources and every image decodes; and the checker itself catches a corrupted
+// image, a missing file, console.error and an uncaught exception. Without Chromium these tests
+// fail, naming the setup command that installs it.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "browser_check.h"
+#include "cli/image_io.h"
+#include "cli/report_html.h"
+#include "cli_test_util.h"
+
+namespace cli {
+namespace {
+
+using testing::BrowserCheck;
+using testing::CheckInChromium;
+using testing::ConsoleMessagesInLog;
+
+Report BrowserReport() {
+  std::vector<std::uint8_t> pixels(4 * 3 * 3);
+  for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<std::uint8_t>(i * 7);
+  Report report;
+  report.title = "browser <check>";
+  ReportSection section;
+  section.title = "images";
+  section.paragraphs = {"a & b"};
+  section.images = {{"plain", EncodePng(4, 3, 3, pixels), 4, 3, 1}, {"zoomed", EncodePng(4, 3, 3, pixels), 4, 3, 8}};
+  section.tables = {{"numbers", {"name", "value"}, {{"x", "1"}, {"y<z", "2"}}}};
+  section.charts = {{"lanes", "lanes", {"stencil", "queue"}, {"active", "dead"}, {{10, 20}, {5, 0}}, true}};
+  report.sections = {section};
+  report.configurationJson = R"({"scene": "builtin:default"})";
+  return report;
+}
+
+std::string Joined(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const std::string& line : lines) text += "\n  " + line;
+  return text;
+}
+
+std::string WithBeforeBodyEnd(std::string html, const std::string& markup) {
+  const std::size_t end = html.rfind("</body>");
+  EXPECT_NE(end, std::string::npos);
+  if (end != std::string::npos) html.insert(end, markup);
+  return html;
+}
+
+bool AnyContains(const std::vector<std::string>& lines, const std::string& text) {
+  for (const std::string& line : lines) {
+    if (line.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+class CliReportBrowser : public testing::ScratchDirTest {
+ protected:
+  // Writes `html` and loads it; the caller ASSERTs `ran` so a missing Chromium fails the test.
+  BrowserCheck Check(const std::string& html) {
+    const BrowserCheck check = CheckInChromium(testing::WriteFile(scratch_ / "report.html", html));
+    std::printf("[ chromium ] %.2f s\n", check.seconds);
+    return check;
+  }
+};
+
+TEST(CliReportBrowserLog, FindsConsoleMessagesAmongChromiumNoise) {
+  const std::string log =
+      "/usr/bin/chromium: 9: [: 25276502016: unexpected operator\n"
+      "[5770:5799:1124/102926.157712:ERROR:dbus/bus.cc:405] Failed to connect to the bus: x\n"
+      "[5813:5813:1124/102926.181022:WARNING:media/gpu/vaapi/vaapi_wrapper.cc:1655] drmGetDevices2() x\n"
+      "[5920:5920:1124/102927.119585:INFO:CONSOLE:1] \"boom\", source: file:///tmp/r.html (1)\n"
+      "[5920:5920:1124/102927.119585:INFO:CONSOLE:3] \"two\n"
+      "lines \"q\"\", source: file:///tmp/r.html (3)\n"
+      "[0101/000000.000000:INFO:CONSOLE(7)] \"old format\", source: file:///tmp/r.html (7)\n"
+      "[5920:5920:1124/102927.879949:WARNING:ui/base/idle/idle_linux.cc:111] None of the known D-Bus\n";
+  const std::vector<std::string> messages = ConsoleMessagesInLog(log);
+  ASSERT_EQ(messages.size(), 3u) << Joined(messages);
+  EXPECT_EQ(messages[0], "\"boom\", source: file:///tmp/r.html (1)");
+  EXPECT_EQ(messages[1], "\"two\nlines \"q\"\", source: file:///tmp/r.html (3)");
+  EXPECT_EQ(messages[2], "\"old format\", source: file:///tmp/r.html (7)");
+  EXPECT_TRUE(ConsoleMessagesInLog("[1:2:1124/102926.1:ERROR:dbus/bus.cc:405] CONSOLE x\n").empty());
+}
+
+TEST_F(CliReportBrowser, ReportLoadsCleanlyWithEveryImageDecoded) {
+  const BrowserCheck check = Check(RenderHtml(BrowserReport()));
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_TRUE(check.consoleErrors.empty()) << Joined(check.consoleErrors);
+  EXPECT_TRUE(check.loadErrors.empty()) << Joined(check.loadErrors);
+  EXPECT_EQ(check.imagesTotal, 2) << check.rawLog;
+  EXPECT_EQ(check.imagesLoaded, 2);
+}
+
+TEST_F(CliReportBrowser, CorruptedPngIsReportedAsNotDecoded) {
+  Report report = BrowserReport();
+  std::vector<std::uint8_t>& png = report.sections[0].images[1].png;
+  ASSERT_GT(png.size(), 40u);
+  for (std::size_t i = 16; i < png.size(); ++i) png[i] ^= 0x5A;  // past the signature and IHDR type
+  const BrowserCheck check = Check(RenderHtml(report));
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_EQ(check.imagesTotal, 2) << check.rawLog;
+  EXPECT_EQ(check.imagesLoaded, 1);
+  ASSERT_EQ(check.loadErrors.size(), 1u) << Joined(check.loadErrors);
+  EXPECT_EQ(check.loadErrors[0], "img zoomed");
+}
+
+TEST_F(CliReportBrowser, MissingFileIsReportedAsFailedLoad) {
+  const BrowserCheck check =
+      Check(WithBeforeBodyEnd(RenderHtml(BrowserReport()), "<img src='no-such-file.png' alt='missing'>"));
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_EQ(check.imagesTotal, 3) << check.rawLog;
+  EXPECT_EQ(check.imagesLoaded, 2);
+  EXPECT_EQ(check.loadErrors, std::vector<std::string>{"img missing"});
+}
+
+TEST_F(CliReportBrowser, ConsoleErrorIsReported) {
+  const BrowserCheck check =
+      Check(WithBeforeBodyEnd(RenderHtml(BrowserReport()), "<script>console.error('boom')</script>"));
+  ASSERT_TRUE(check.ran) << check.error;
+  ASSERT_EQ(check.consoleErrors.size(), 1u) << Joined(check.consoleErrors) << "\n" << check.rawLog;
+  EXPECT_EQ(check.consoleErrors[0].rfind("\"boom\", source: file://", 0), 0u) << check.consoleErrors[0];
+  EXPECT_EQ(check.imagesLoaded, 2);
+}
+
+TEST_F(CliReportBrowser, UncaughtExceptionIsReported) {
+  const BrowserCheck check =
+      Check(WithBeforeBodyEnd(RenderHtml(BrowserReport()), "<script>throw new Error('boom')</script>"));
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_TRUE(AnyContains(check.consoleErrors, "Uncaught Error: boom")) << Joined(check.consoleErrors) << "\n"
+                                                                          << check.rawLog;
+  EXPECT_EQ(check.imagesLoaded, 2);
+}
+
+TEST_F(CliReportBrowser, ErrorLoggedAfterLoadIsReported) {
+  const BrowserCheck check = Check(WithBeforeBodyEnd(
+      RenderHtml(BrowserReport()), "<script>setTimeout(function(){console.error('late')},1000)</script>"));
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_TRUE(AnyContains(check.consoleErrors, "\"late\"")) << Joined(check.consoleErrors) << "\n" << check.rawLog;
+}
+
+}  // namespace
+}  // namespace cli
