@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -86,16 +87,21 @@ constexpr TimeField kTimeFields[] = {
 };
 constexpr const char* kBound = "bound";
 
-void CheckStrategies(std::span<const sim::DispatchReport> reports,
-                     std::span<const std::string> strategies) {
-  if (!strategies.empty() && strategies.size() != reports.size()) {
-    throw std::invalid_argument(std::to_string(strategies.size()) + " strategies for " +
+void CheckLabels(std::span<const sim::DispatchReport> reports, std::span<const std::string> labels,
+                 const char* what) {
+  if (!labels.empty() && labels.size() != reports.size()) {
+    throw std::invalid_argument(std::to_string(labels.size()) + " " + what + " for " +
                                 std::to_string(reports.size()) + " dispatches");
   }
 }
 
-std::string_view StrategyOf(std::span<const std::string> strategies, std::size_t index) {
-  return strategies.empty() ? std::string_view() : std::string_view(strategies[index]);
+void CheckStrategies(std::span<const sim::DispatchReport> reports,
+                     std::span<const std::string> strategies) {
+  CheckLabels(reports, strategies, "strategies");
+}
+
+std::string_view LabelOf(std::span<const std::string> labels, std::size_t index) {
+  return labels.empty() ? std::string_view() : std::string_view(labels[index]);
 }
 
 nlohmann::ordered_json Vector3(const glm::ivec3& v) { return {v.x, v.y, v.z}; }
@@ -189,8 +195,11 @@ nlohmann::ordered_json TimeJson(const sim::TimeEstimate& time) {
   return json;
 }
 
-nlohmann::ordered_json DispatchJson(const sim::DispatchReport& report, std::string_view strategy) {
-  nlohmann::ordered_json json = {
+nlohmann::ordered_json DispatchJson(const sim::DispatchReport& report, std::string_view strategy,
+                                    std::string_view frame) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  if (!frame.empty()) json["frame"] = frame;
+  json.update(nlohmann::ordered_json{
       {"name", report.name},
       {"kind", sim::DispatchKindName(report.kind)},
       {"strategy",
@@ -203,7 +212,7 @@ nlohmann::ordered_json DispatchJson(const sim::DispatchReport& report, std::stri
       {"resources", nlohmann::ordered_json::array()},
       {"occupancy", OccupancyJson(report.occupancy)},
       {"time_estimate_us", TimeJson(report.time)},
-  };
+  });
   for (const sim::ResourceTraffic& traffic : report.resources) {
     json["resources"].push_back(ResourceJson(traffic));
   }
@@ -226,8 +235,10 @@ std::string FormatFixed(double value, int decimals) {
   return text;
 }
 
-std::vector<std::string> CsvHeader() {
-  std::vector<std::string> header{"name", "kind", "strategy"};
+std::vector<std::string> CsvHeader(bool withFrame) {
+  std::vector<std::string> header;
+  if (withFrame) header.emplace_back("frame");
+  header.insert(header.end(), {"name", "kind", "strategy"});
   for (const sim::LaneCounterField& field : sim::kLaneCounterFields) {
     header.emplace_back(field.name);
   }
@@ -242,9 +253,11 @@ std::vector<std::string> CsvHeader() {
   return header;
 }
 
-std::vector<std::string> CsvRow(const sim::DispatchReport& report, std::string_view strategy) {
-  std::vector<std::string> row{report.name, std::string(sim::DispatchKindName(report.kind)),
-                               std::string(strategy)};
+std::vector<std::string> CsvRow(const sim::DispatchReport& report, std::string_view strategy,
+                                std::optional<std::string_view> frame) {
+  std::vector<std::string> row;
+  if (frame) row.emplace_back(*frame);
+  row.insert(row.end(), {report.name, std::string(sim::DispatchKindName(report.kind)), std::string(strategy)});
   for (const sim::LaneCounterField& field : sim::kLaneCounterFields) {
     row.push_back(std::to_string(report.lanes.*field.member));
   }
@@ -381,8 +394,10 @@ Rgb8 HeatColour(float utilization) {
 nlohmann::ordered_json DispatchReportsJson(std::span<const sim::DispatchReport> reports,
                                            const sim::GpuConfig& gpu,
                                            const nlohmann::ordered_json& configuration,
-                                           std::span<const std::string> strategies) {
+                                           std::span<const std::string> strategies,
+                                           std::span<const std::string> frames) {
   CheckStrategies(reports, strategies);
+  CheckLabels(reports, frames, "frames");
   nlohmann::ordered_json json = {
       {"schema", kDispatchesSchema},
       {"version", kDispatchesVersion},
@@ -392,7 +407,7 @@ nlohmann::ordered_json DispatchReportsJson(std::span<const sim::DispatchReport> 
       {"dispatches", nlohmann::ordered_json::array()},
   };
   for (std::size_t i = 0; i < reports.size(); ++i) {
-    json["dispatches"].push_back(DispatchJson(reports[i], StrategyOf(strategies, i)));
+    json["dispatches"].push_back(DispatchJson(reports[i], LabelOf(strategies, i), LabelOf(frames, i)));
   }
   return json;
 }
@@ -408,41 +423,47 @@ std::string CsvField(std::string_view text) {
 }
 
 std::string DispatchReportsCsv(std::span<const sim::DispatchReport> reports,
-                               std::span<const std::string> strategies) {
+                               std::span<const std::string> strategies,
+                               std::span<const std::string> frames) {
   CheckStrategies(reports, strategies);
+  CheckLabels(reports, frames, "frames");
   std::string csv;
-  AppendCsvLine(csv, CsvHeader());
+  AppendCsvLine(csv, CsvHeader(!frames.empty()));
   for (std::size_t i = 0; i < reports.size(); ++i) {
-    AppendCsvLine(csv, CsvRow(reports[i], StrategyOf(strategies, i)));
+    const std::optional<std::string_view> frame =
+        frames.empty() ? std::nullopt : std::optional<std::string_view>(frames[i]);
+    AppendCsvLine(csv, CsvRow(reports[i], LabelOf(strategies, i), frame));
   }
   return csv;
 }
 
-void PrintDispatchSummary(std::ostream& out, std::span<const sim::DispatchReport> reports,
-                          const sim::GpuConfig& gpu, std::span<const std::string> strategies) {
+std::vector<std::vector<std::string>> DispatchSummaryRows(std::span<const sim::DispatchReport> reports,
+                                                          std::span<const std::string> strategies) {
   CheckStrategies(reports, strategies);
   std::vector<std::vector<std::string>> rows(1);
-  std::vector<bool> rightAligned;
-  for (const Column& column : kSummaryColumns) {
-    rows[0].emplace_back(column.heading);
-    rightAligned.push_back(column.numeric);
-  }
+  for (const Column& column : kSummaryColumns) rows[0].emplace_back(column.heading);
   for (std::size_t i = 0; i < reports.size(); ++i) {
-    rows.push_back(SummaryRow(reports[i], StrategyOf(strategies, i)));
+    rows.push_back(SummaryRow(reports[i], LabelOf(strategies, i)));
   }
+  return rows;
+}
+
+void PrintDispatchSummary(std::ostream& out, std::span<const sim::DispatchReport> reports,
+                          const sim::GpuConfig& gpu, std::span<const std::string> strategies) {
+  std::vector<bool> rightAligned;
+  for (const Column& column : kSummaryColumns) rightAligned.push_back(column.numeric);
   out << "dispatches (est. µs: estimated from the GPU configuration '" << gpu.name
       << "', docs/timing-model.md; occupancy: theoretical waves per SIMD; lane shares: % of "
          "lanes launched)\n";
-  PrintAlignedTable(out, rows, rightAligned);
+  PrintAlignedTable(out, DispatchSummaryRows(reports, strategies), rightAligned);
 }
 
-void PrintDispatchComparison(std::ostream& out, std::string_view name, std::string_view leftLabel,
-                             std::span<const sim::DispatchReport> leftPass,
-                             std::string_view rightLabel,
-                             std::span<const sim::DispatchReport> rightPass) {
+std::vector<std::vector<std::string>> DispatchComparisonRows(
+    std::string_view name, std::string_view leftLabel, std::span<const sim::DispatchReport> leftPass,
+    std::string_view rightLabel, std::span<const sim::DispatchReport> rightPass) {
   const sim::DispatchReport& a = FindDispatch(leftPass, name, leftLabel);
   const sim::DispatchReport& b = FindDispatch(rightPass, name, rightLabel);
-  const std::vector<std::vector<std::string>> rows = {
+  return {
       {"", std::string(leftLabel), std::string(rightLabel)},
       {"waves", std::to_string(a.lanes.waves), std::to_string(b.lanes.waves)},
       {"active lanes", std::to_string(a.lanes.lanesActive), std::to_string(b.lanes.lanesActive)},
@@ -456,7 +477,29 @@ void PrintDispatchComparison(std::ostream& out, std::string_view name, std::stri
       {"estimated µs, whole pass", FormatFixed(EstimatedMicroseconds(leftPass), 1),
        FormatFixed(EstimatedMicroseconds(rightPass), 1)},
   };
-  PrintAlignedTable(out, rows, {false, true, true}, "  ");
+}
+
+void PrintDispatchComparison(std::ostream& out, std::string_view name, std::string_view leftLabel,
+                             std::span<const sim::DispatchReport> leftPass,
+                             std::string_view rightLabel,
+                             std::span<const sim::DispatchReport> rightPass) {
+  PrintAlignedTable(out, DispatchComparisonRows(name, leftLabel, leftPass, rightLabel, rightPass),
+                    {false, true, true}, "  ");
+}
+
+HeatMapImage HeatMapPreview(const sim::TileHeatMap& heat) {
+  if (heat.Empty()) throw std::invalid_argument("empty heat map");
+  HeatMapImage image{heat.TilesX() * kHeatPreviewScale, heat.TilesY() * kHeatPreviewScale, {}};
+  image.rgb.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3);
+  for (int py = 0; py < image.height; ++py) {
+    for (int px = 0; px < image.width; ++px) {
+      const Rgb8 colour = HeatColour(heat.Utilization(px / kHeatPreviewScale, py / kHeatPreviewScale));
+      const std::size_t at = (static_cast<std::size_t>(py) * static_cast<std::size_t>(image.width) +
+                              static_cast<std::size_t>(px)) * 3;
+      std::copy(colour.begin(), colour.end(), image.rgb.begin() + static_cast<std::ptrdiff_t>(at));
+    }
+  }
+  return image;
 }
 
 void WriteHeatMap(const sim::TileHeatMap& heat, const std::filesystem::path& exr,
@@ -465,9 +508,6 @@ void WriteHeatMap(const sim::TileHeatMap& heat, const std::filesystem::path& exr
   const int tilesX = heat.TilesX(), tilesY = heat.TilesY();
   const std::size_t tiles = static_cast<std::size_t>(tilesX) * static_cast<std::size_t>(tilesY);
   std::vector<float> active(tiles), helper(tiles), dead(tiles), launched(tiles), utilization(tiles);
-  const int previewWidth = tilesX * kHeatPreviewScale;
-  std::vector<std::uint8_t> preview(static_cast<std::size_t>(previewWidth) *
-                                    static_cast<std::size_t>(tilesY * kHeatPreviewScale) * 3);
   for (int ty = 0; ty < tilesY; ++ty) {
     for (int tx = 0; tx < tilesX; ++tx) {
       const std::size_t tile = static_cast<std::size_t>(ty) * static_cast<std::size_t>(tilesX) +
@@ -476,16 +516,7 @@ void WriteHeatMap(const sim::TileHeatMap& heat, const std::filesystem::path& exr
       helper[tile] = static_cast<float>(heat.Helper(tx, ty));
       dead[tile] = static_cast<float>(heat.Dead(tx, ty));
       launched[tile] = static_cast<float>(heat.Launched(tx, ty));
-      const float tileUtilization = heat.Utilization(tx, ty);
-      utilization[tile] = std::max(tileUtilization, 0.0f);
-      const Rgb8 colour = HeatColour(tileUtilization);
-      for (int py = ty * kHeatPreviewScale; py < (ty + 1) * kHeatPreviewScale; ++py) {
-        for (int px = tx * kHeatPreviewScale; px < (tx + 1) * kHeatPreviewScale; ++px) {
-          const std::size_t at = (static_cast<std::size_t>(py) * previewWidth + px) * 3;
-          std::copy(colour.begin(), colour.end(),
-                    preview.begin() + static_cast<std::ptrdiff_t>(at));
-        }
-      }
+      utilization[tile] = std::max(heat.Utilization(tx, ty), 0.0f);
     }
   }
   const ExrChannel channels[] = {{"active", active},
@@ -494,7 +525,8 @@ void WriteHeatMap(const sim::TileHeatMap& heat, const std::filesystem::path& exr
                                  {"launched", launched},
                                  {"utilization", utilization}};
   WriteExr(exr, tilesX, tilesY, channels);
-  WritePng(png, previewWidth, tilesY * kHeatPreviewScale, 3, preview);
+  const HeatMapImage preview = HeatMapPreview(heat);
+  WritePng(png, preview.width, preview.height, 3, preview.rgb);
 }
 
 std::string HeatMapStem(std::size_t index, std::string_view name, std::string_view strategy) {

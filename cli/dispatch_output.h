@@ -5,11 +5,13 @@
 // the counters; formats in docs/cli.md "aasim frame".
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <ostream>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -22,19 +24,22 @@ inline constexpr int kDispatchesVersion = 1;
 
 // `strategies` is empty or parallel to `reports`: the dispatch strategy each dispatch ran under
 // ("stencil", "queue"; empty for dispatches outside a post pass). The pass dispatches of two
-// strategies share names, so every output carries it. Mismatched sizes throw
-// std::invalid_argument.
+// strategies share names, so every output carries it. `frames`, likewise, names the frame (EQAA
+// mode) each dispatch belongs to when one run renders several; with it JSON gains a "frame" key
+// and CSV a leading "frame" column. Mismatched sizes throw std::invalid_argument.
 
 // {"schema", "version", "gpu", "timing_model", "configuration", "dispatches": [...]};
 // `configuration` is echoed as given (the run's resolved options).
 nlohmann::ordered_json DispatchReportsJson(std::span<const sim::DispatchReport> reports,
                                            const sim::GpuConfig& gpu,
                                            const nlohmann::ordered_json& configuration,
-                                           std::span<const std::string> strategies = {});
+                                           std::span<const std::string> strategies = {},
+                                           std::span<const std::string> frames = {});
 
 // Header row, then one row per dispatch; "\n" line ends.
 std::string DispatchReportsCsv(std::span<const sim::DispatchReport> reports,
-                               std::span<const std::string> strategies = {});
+                               std::span<const std::string> strategies = {},
+                               std::span<const std::string> frames = {});
 // One CSV field: quoted, with inner quotes doubled, when it holds a comma, quote or line break.
 std::string CsvField(std::string_view text);
 
@@ -43,6 +48,16 @@ std::string CsvField(std::string_view text);
 void PrintDispatchSummary(std::ostream& out, std::span<const sim::DispatchReport> reports,
                           const sim::GpuConfig& gpu, std::span<const std::string> strategies = {});
 
+// The summary table's cells: a header row, then one row per dispatch ("name [strategy]").
+std::vector<std::vector<std::string>> DispatchSummaryRows(std::span<const sim::DispatchReport> reports,
+                                                          std::span<const std::string> strategies = {});
+
+// The comparison's cells (PrintDispatchComparison): a header row with the two labels, then one
+// row per quantity. std::invalid_argument when a pass lacks `name`.
+std::vector<std::vector<std::string>> DispatchComparisonRows(
+    std::string_view name, std::string_view leftLabel, std::span<const sim::DispatchReport> leftPass,
+    std::string_view rightLabel, std::span<const sim::DispatchReport> rightPass);
+
 // One dispatch, `name`, run under two strategies, side by side: waves, active and launched
 // lanes, utilisation %, DRAM bytes, estimated µs, and the estimated µs of each whole pass
 // (every dispatch in `leftPass` / `rightPass`). std::invalid_argument when a pass lacks `name`.
@@ -50,6 +65,14 @@ void PrintDispatchComparison(std::ostream& out, std::string_view name, std::stri
                              std::span<const sim::DispatchReport> leftPass,
                              std::string_view rightLabel,
                              std::span<const sim::DispatchReport> rightPass);
+
+// The utilization preview: 4x4 pixels per 8x8 tile, dark blue (0) to yellow (1), dark grey where
+// no lane was launched. Throws std::invalid_argument for an empty map.
+struct HeatMapImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+HeatMapImage HeatMapPreview(const sim::TileHeatMap& heat);
 
 // One pixel per 8x8 tile. EXR channels active, helper, dead, launched (lane counts) and
 // utilization (active / launched; 0 where launched is 0). The PNG shows utilization at 4x4

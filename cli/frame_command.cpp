@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/dispatch_output.h"
+#include "cli/frame_output.h"
 #include "cli/frame_input.h"
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
@@ -45,8 +46,10 @@ struct ImageDifference {
   int x = 0, y = 0;
 };
 
-sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::SamplePattern pattern) {
+sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::SamplePattern pattern,
+                                const scenes::Lighting& lighting) {
   sim::FrameSettings settings;
+  ApplyLighting(lighting, settings);
   settings.width = options.width;
   settings.height = options.height;
   settings.eqaa = options.Eqaa();
@@ -92,71 +95,18 @@ std::optional<ImageDifference> Difference(const sim::Texture2D<T>& a, const sim:
   return difference;
 }
 
-std::vector<std::uint8_t> SrgbImage(const sim::Texture2D<glm::vec4>& colour) {
-  std::vector<std::uint8_t> pixels;
-  pixels.reserve(colour.Texels().size() * 3);
-  for (const glm::vec4& texel : colour.Texels()) {
-    pixels.push_back(EncodeSrgb8(texel.r));
-    pixels.push_back(EncodeSrgb8(texel.g));
-    pixels.push_back(EncodeSrgb8(texel.b));
-  }
-  return pixels;
-}
-
-// The edge mask is 0 or 1, so black and white come out exactly.
-std::vector<std::uint8_t> MaskImage(const sim::Texture2D<float>& mask) {
-  std::vector<std::uint8_t> pixels;
-  pixels.reserve(mask.Texels().size());
-  for (const float value : mask.Texels()) pixels.push_back(EncodeSrgb8(value));
-  return pixels;
-}
-
-template <typename T, typename Component>
-std::vector<float> Plane(const sim::Texture2D<T>& texture, Component&& component) {
-  std::vector<float> plane;
-  plane.reserve(texture.Texels().size());
-  for (const T& texel : texture.Texels()) plane.push_back(component(texel));
-  return plane;
-}
-
-void WriteFrameExr(const std::filesystem::path& path, const sim::FramePipeline& pipeline) {
-  const sim::Texture2D<glm::vec4>& colour = pipeline.Colour();
-  const sim::Texture2D<glm::vec4>& normal = pipeline.Normal();
-  const sim::Texture2D<glm::vec2>& velocity = pipeline.Velocity();
-  const std::vector<float> r = Plane(colour, [](const glm::vec4& c) { return c.r; });
-  const std::vector<float> g = Plane(colour, [](const glm::vec4& c) { return c.g; });
-  const std::vector<float> b = Plane(colour, [](const glm::vec4& c) { return c.b; });
-  const std::vector<float> nx = Plane(normal, [](const glm::vec4& n) { return n.x; });
-  const std::vector<float> ny = Plane(normal, [](const glm::vec4& n) { return n.y; });
-  const std::vector<float> nz = Plane(normal, [](const glm::vec4& n) { return n.z; });
-  // Ids up to 2^24 are exact in a float; the background's kNoObject would round, so it is -1.
-  const std::vector<float> objectId = Plane(pipeline.ObjectId(), [](std::uint32_t id) {
-    return id == sim::kNoObject ? -1.0f : static_cast<float>(id);
-  });
-  const std::vector<float> vx = Plane(velocity, [](const glm::vec2& v) { return v.x; });
-  const std::vector<float> vy = Plane(velocity, [](const glm::vec2& v) { return v.y; });
-  const ExrChannel channels[] = {
-      {"R", r},           {"G", g},
-      {"B", b},           {"depth", pipeline.Depth().Texels()},
-      {"normal.X", nx},   {"normal.Y", ny},
-      {"normal.Z", nz},   {"objectId", objectId},
-      {"velocity.X", vx}, {"velocity.Y", vy},
-  };
-  WriteExr(path, colour.Width(), colour.Height(), channels);
-}
-
 void WriteImages(OutputDir& dir, const sim::FramePipeline& pipeline,
                  const std::vector<PassRun>& passRuns) {
   const sim::Texture2D<glm::vec4>& colour = pipeline.Colour();
-  WritePng(dir.Stage("colour.png"), colour.Width(), colour.Height(), 3, SrgbImage(colour));
+  WritePng(dir.Stage("colour.png"), colour.Width(), colour.Height(), 3, SrgbImage(colour.Texels()));
   WriteFrameExr(dir.Stage("frame.exr"), pipeline);
   for (const PassRun& run : passRuns) {
     const std::string folder = "post/" + std::string(passes::StrategyName(run.strategy)) + "/";
     const sim::Texture2D<glm::vec4>& output = run.result.output;
     WritePng(dir.Stage(folder + "output.png"), output.Width(), output.Height(), 3,
-             SrgbImage(output));
+             SrgbImage(output.Texels()));
     const sim::Texture2D<float>& edges = run.result.edges;
-    WritePng(dir.Stage(folder + "edges.png"), edges.Width(), edges.Height(), 1, MaskImage(edges));
+    WritePng(dir.Stage(folder + "edges.png"), edges.Width(), edges.Height(), 1, MaskImage(edges.Texels()));
   }
 }
 
@@ -209,8 +159,9 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
   raster::SamplePattern pattern = raster::ResolvePattern(options.pattern, options.samples);
   sim::Machine machine(sim::GpuConfigByName(options.gpu));
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  const FrameScene scene = ToFrameScene(scenes::LoadScene(options.scene, aspect), aspect);
-  sim::FramePipeline pipeline(machine, MakeSettings(options, std::move(pattern)));
+  const scenes::Scene loaded = scenes::LoadScene(options.scene, aspect);
+  const FrameScene scene = ToFrameScene(loaded, aspect);
+  sim::FramePipeline pipeline(machine, MakeSettings(options, std::move(pattern), loaded.lighting));
   OutputDir dir = OpenOutOption(options.out);
 
   pipeline.Render(scene.Geometry());

@@ -2,6 +2,7 @@
 
 #include "cli/frame_input.h"
 
+#include <algorithm>
 #include <string>
 
 #include <glm/mat4x4.hpp>
@@ -36,20 +37,64 @@ ClipSpaceScene ToClipSpace(const scenes::Scene& scene, float aspect) {
   return clip;
 }
 
+namespace {
+
+// The texture scenes::BaseColour samples for this mesh, or -1: a material texture needs the
+// mesh's texcoords (the loader already warned about a textured material without them).
+int BaseColourTexture(const scenes::Scene& scene, const scenes::Mesh& mesh) {
+  if (mesh.material < 0 || mesh.texcoords.empty()) return -1;
+  return scene.materials[static_cast<std::size_t>(mesh.material)].baseColourTexture;
+}
+
+glm::vec3 BaseColourFactor(const scenes::Scene& scene, std::size_t meshIndex) {
+  const scenes::Mesh& mesh = scene.meshes[meshIndex];
+  if (mesh.material < 0) return glm::vec3(scenes::BaseColour(scene, meshIndex, glm::vec2(0.0f)));
+  return glm::vec3(scene.materials[static_cast<std::size_t>(mesh.material)].baseColourFactor);
+}
+
+void AddTextures(const scenes::Scene& scene, FrameScene& frame) {
+  frame.textures.reserve(scene.textures.size());
+  for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+    const scenes::Texture& source = scene.textures[i];
+    const std::string name = source.name.empty() ? "texture " + std::to_string(i) : source.name;
+    // Modelled as RGBA8, the format glTF's PNG and JPEG images arrive in.
+    sim::Texture2D<glm::vec4>& texture =
+        frame.textures.emplace_back(name, source.width, source.height, 4);
+    std::copy(source.texels.begin(), source.texels.end(), texture.Texels().begin());
+  }
+}
+
+}  // namespace
+
 FrameScene ToFrameScene(const scenes::Scene& scene, float aspect) {
   FrameScene frame;
   frame.clip = ToClipSpace(scene, aspect);
   frame.normals.reserve(scene.VertexCount());
   frame.objectIds.reserve(scene.TriangleCount());
+  bool textured = false;
+  for (const scenes::Mesh& mesh : scene.meshes) textured |= BaseColourTexture(scene, mesh) >= 0;
   for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
     const scenes::Mesh& source = scene.meshes[mesh];
     const std::vector<glm::vec3> normals = scenes::VertexNormals(source);
     frame.normals.insert(frame.normals.end(), normals.begin(), normals.end());
     frame.objectIds.insert(frame.objectIds.end(), source.indices.size() / 3,
                            static_cast<std::uint32_t>(mesh));
-    frame.baseColours.push_back(glm::vec3(scenes::BaseColour(scene, mesh, glm::vec2(0.0f))));
+    frame.baseColours.push_back(BaseColourFactor(scene, mesh));
+    frame.baseColourTextures.push_back(BaseColourTexture(scene, source));
+    if (!textured) continue;
+    if (source.texcoords.empty()) {
+      frame.texcoords.insert(frame.texcoords.end(), source.positions.size(), glm::vec2(0.0f));
+    } else {
+      frame.texcoords.insert(frame.texcoords.end(), source.texcoords.begin(), source.texcoords.end());
+    }
   }
+  if (textured) AddTextures(scene, frame);
   return frame;
+}
+
+void ApplyLighting(const scenes::Lighting& lighting, sim::FrameSettings& settings) {
+  settings.towardsLight = lighting.towardsLight;
+  settings.ambient = lighting.ambient;
 }
 
 sim::FrameGeometry FrameScene::Geometry() const {
@@ -58,7 +103,10 @@ sim::FrameGeometry FrameScene::Geometry() const {
           .normals = normals,
           .indices = clip.indices,
           .objectIds = objectIds,
-          .baseColours = baseColours};
+          .baseColours = baseColours,
+          .texcoords = texcoords,
+          .baseColourTextures = baseColourTextures,
+          .textures = textures};
 }
 
 }  // namespace cli

@@ -13,10 +13,12 @@
 
 #include "raster/rasterizer.h"
 #include "scenes/scene.h"
+#include "sim/resources.h"
 
-// Declared only (sim/frame.h defines it), so raster-only users skip the machine's headers.
+// Declared only (sim/frame.h defines them), so raster-only users skip the machine's headers.
 namespace sim {
 struct FrameGeometry;
+struct FrameSettings;
 }  // namespace sim
 
 namespace cli {
@@ -33,15 +35,23 @@ struct ClipSpaceScene {
 ClipSpaceScene ToClipSpace(const scenes::Scene& scene, float aspect);
 
 // Everything sim::FramePipeline::Render reads, in ToClipSpace's vertex and triangle order.
+// Textured meshes carry the material's factor in baseColours and the texture as a machine
+// resource, so the material kernel shades what scenes::BaseColour (and the ground truth) does.
 struct FrameScene {
   ClipSpaceScene clip;
   std::vector<glm::vec3> normals;        // world space, per vertex
   std::vector<std::uint32_t> objectIds;  // per triangle: the index of its mesh
-  std::vector<glm::vec3> baseColours;    // per mesh: scenes::BaseColour (untextured part)
+  std::vector<glm::vec3> baseColours;    // per mesh: the factor (palette colour without material)
+  std::vector<glm::vec2> texcoords;      // per vertex; empty when no mesh is textured
+  std::vector<int> baseColourTextures;   // per mesh: index into textures, or -1
+  std::vector<sim::Texture2D<glm::vec4>> textures;  // the scene's textures, linear RGBA
 
   // A still frame: no previous positions, so every velocity is zero. Valid while this lives.
   sim::FrameGeometry Geometry() const;
 };
+
+// The scene's light and ambient term, so the material kernel shades what the ground truth does.
+void ApplyLighting(const scenes::Lighting& lighting, sim::FrameSettings& settings);
 
 // Normals from scenes::VertexNormals: the mesh's own, else smooth ones from its triangles.
 FrameScene ToFrameScene(const scenes::Scene& scene, float aspect);

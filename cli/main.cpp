@@ -13,6 +13,8 @@
 #include "cli/frame_options.h"
 #include "cli/raster_command.h"
 #include "cli/raster_options.h"
+#include "cli/run_command.h"
+#include "cli/run_options.h"
 
 namespace {
 
@@ -46,32 +48,37 @@ int main(int argc, char** argv) {
   CLI::App* fixtures = cli::AddFixturesCommand(app, fixturesOptions);
   cli::FrameCommandOptions frameOptions;
   CLI::App* frame = cli::AddFrameCommand(app, frameOptions);
+  cli::RunCommandOptions runOptions;
+  CLI::App* run = cli::AddRunCommand(app, runOptions);
+  app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
+             "default scene, report in out/report/report.html.");
 
   try {
     app.parse(argc, argv);
     if (raster->parsed()) cli::ResolveRasterOptions(rasterOptions);
     if (frame->parsed()) cli::ResolveFrameOptions(frameOptions);
+    // `aasim` alone is the main job with its defaults.
+    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed()) cli::ResolveRunOptions(*run, runOptions);
   } catch (const CLI::Success& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
     const char* command = raster->parsed()     ? "aasim raster"
                           : fixtures->parsed() ? "aasim fixtures"
                           : frame->parsed()    ? "aasim frame"
+                          : run->parsed()      ? "aasim run"
                                                : "aasim";
     return ReportUsageError(command, error);
   }
 
-  if (!raster->parsed() && !fixtures->parsed() && !frame->parsed()) {
-    std::cout << app.help();
-    return 0;
-  }
   try {
     if (raster->parsed()) {
       cli::RunRasterCommand(rasterOptions, std::cout);
     } else if (frame->parsed()) {
       cli::RunFrameCommand(frameOptions, std::cout);
-    } else {
+    } else if (fixtures->parsed()) {
       cli::RunFixturesCommand(fixturesOptions, std::cout);
+    } else {
+      cli::RunRunCommand(runOptions, std::cout, std::cerr);
     }
   } catch (const std::bad_alloc&) {
     std::cerr << "aasim: out of memory\n";

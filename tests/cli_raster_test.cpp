@@ -200,10 +200,12 @@ TEST_F(CliRasterTest, HelpExplainsEveryOption) {
   EXPECT_NE(run.out.find("[1 - 16384]=1920"), std::string::npos) << run.out;
 }
 
-TEST_F(CliRasterTest, NoArgumentsPrintsHelpAndSucceeds) {
-  const CommandResult run = RunAasim({}, scratch_);
+TEST_F(CliRasterTest, TopLevelHelpListsEverySubcommand) {
+  const CommandResult run = RunAasim({"--help"}, scratch_);
   EXPECT_EQ(run.exitCode, 0);
-  EXPECT_NE(run.out.find("raster"), std::string::npos) << run.out;
+  for (const char* command : {"raster", "fixtures", "frame", "run"}) {
+    EXPECT_NE(run.out.find(command), std::string::npos) << command << "\n" << run.out;
+  }
 }
 
 // --- The colour block (--fragments): one run per EQAA mode of the issue. ---

@@ -1,0 +1,97 @@
+// `aasim run` (see run_command.h).
+
+#include "cli/run_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include <oneapi/tbb/global_control.h>
+
+#include "cli/dispatch_output.h"
+#include "cli/output_dir.h"
+#include "cli/study.h"
+#include "cli/study_report.h"
+
+namespace cli {
+namespace {
+
+std::string Fixed(double value, int decimals) {
+  if (!std::isfinite(value)) return std::isnan(value) ? "n/a" : "inf";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+void PrintQuality(std::ostream& out, const ScoredImage& image) {
+  const passes::QualityScores& s = image.quality.scores;
+  char line[160];
+  std::snprintf(line, sizeof line, "  %-22s %8s %8s %8s %10s\n", image.label.c_str(), Fixed(s.psnr, 2).c_str(),
+                Fixed(s.ssim, 4).c_str(), Fixed(s.flip, 4).c_str(), Fixed(s.edgeFlip, 4).c_str());
+  out << line;
+}
+
+void PrintPass(std::ostream& out, const Study& study, const StudyPass& pass) {
+  out << "\nstencil vs queue: " << pass.studiedDispatch << " on " << pass.inputFrame << " (" << pass.edgePixels
+      << " edge pixels; estimated µs: docs/timing-model.md)\n";
+  if (pass.runs.size() == 2) {
+    const StudyPassRun &a = pass.runs[0], &b = pass.runs[1];
+    const std::span<const sim::DispatchReport> all(study.dispatches);
+    PrintDispatchComparison(out, pass.studiedDispatch, passes::StrategyName(a.strategy),
+                            all.subspan(a.firstDispatch, a.endDispatch - a.firstDispatch),
+                            passes::StrategyName(b.strategy),
+                            all.subspan(b.firstDispatch, b.endDispatch - b.firstDispatch));
+  }
+  out << "identical output: "
+      << (pass.differingPixels == 0 ? "yes (output and edge mask bit-identical)"
+                                    : "NO, " + std::to_string(pass.differingPixels) + " pixels differ")
+      << '\n';
+}
+
+void PrintSummary(std::ostream& out, const Study& study, const RunCommandOptions& options,
+                  const std::filesystem::path& dir) {
+  out << "run        " << options.scene << ", " << options.width << "x" << options.height << ", GPU "
+      << study.gpu.name << ", ground truth " << study.groundTruth.image.samplesPerPixel << " rays/px"
+      << (study.groundTruth.cacheHit ? " (cached)" : "") << "\n\n";
+  char header[160];
+  std::snprintf(header, sizeof header, "  %-22s %8s %8s %8s %10s\n", "image", "PSNR dB", "SSIM", "FLIP", "edge FLIP");
+  out << "quality against the ground truth\n" << header;
+  for (const StudyFrame& frame : study.frames) PrintQuality(out, frame.image);
+  for (const StudyPass& pass : study.passes) PrintQuality(out, pass.image);
+  for (const StudyPass& pass : study.passes) PrintPass(out, study, pass);
+  out << "\nhost time  " << Fixed(study.hostSeconds, 1) << " s (" << study.threads << " threads)\n"
+      << "report: " << std::filesystem::absolute(dir / "report.html").string() << '\n';
+}
+
+}  // namespace
+
+void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std::ostream& log) {
+  const tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism,
+                                        static_cast<std::size_t>(options.threads));
+  RunCommandOptions resolved = options;
+  if (!resolved.noCache && resolved.cache.empty()) {
+    resolved.cache = scenes::GroundTruthCache::DefaultDirectory().string();
+  }
+  // Every input is read and checked before the output directory exists, so a bad input leaves
+  // no directory behind.
+  const StudyInputs inputs = LoadStudyInputs(resolved);
+  OutputDir dir = OpenOutOption(resolved.out);
+  const Study study = RunStudy(
+      inputs, resolved, [&](const StudyFrame& frame, const sim::FramePipeline& pipeline) {
+        StageFrameFiles(dir, frame, pipeline);
+      },
+      log);
+  StageStudyFiles(dir, study, resolved);
+  dir.Commit();
+  PrintSummary(summary, study, resolved, dir.Path());
+  for (const StudyPass& pass : study.passes) {
+    if (pass.differingPixels == 0) continue;
+    throw std::runtime_error("post pass " + pass.name + ": the strategies' outputs differ in " +
+                             std::to_string(pass.differingPixels) + " pixels, first at (" +
+                             std::to_string(pass.firstDifferenceX) + ", " + std::to_string(pass.firstDifferenceY) +
+                             "): a bug in passes/ (outputs kept in " + dir.Path().string() + ")");
+  }
+}
+
+}  // namespace cli

@@ -1,0 +1,243 @@
+// Option registry and cross-option checks of `aasim run` (see run_options.h).
+
+#include "cli/run_options.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "cli/common_options.h"
+#include "cli/frame_options.h"
+#include "cli/post_passes.h"
+#include "sim/gpu_config.h"
+
+namespace cli {
+namespace {
+
+constexpr std::string_view kAllPasses = "all";
+constexpr std::string_view kNoPasses = "none";
+
+struct NamedProgress {
+  std::string_view name;
+  ProgressMode mode;
+};
+constexpr NamedProgress kProgressModes[] = {
+    {"auto", ProgressMode::Auto}, {"always", ProgressMode::Always}, {"never", ProgressMode::Never}};
+
+std::vector<std::string_view> SplitList(std::string_view list) {
+  std::vector<std::string_view> items;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    items.push_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
+
+// "8S/4Z/2F" or "8/4/2": three numbers, each optionally followed by its letter.
+bool ParseMode(std::string_view text, fmask::EqaaConfig& mode) {
+  int values[3] = {0, 0, 0};
+  constexpr char kLetters[3] = {'S', 'Z', 'F'};
+  std::size_t at = 0;
+  for (int part = 0; part < 3; ++part) {
+    if (part > 0) {
+      if (at >= text.size() || text[at] != '/') return false;
+      ++at;
+    }
+    const std::size_t digits = at;
+    while (at < text.size() && std::isdigit(static_cast<unsigned char>(text[at])) && at - digits < 3) {
+      values[part] = values[part] * 10 + (text[at] - '0');
+      ++at;
+    }
+    if (at == digits) return false;
+    if (at < text.size() && std::toupper(static_cast<unsigned char>(text[at])) == kLetters[part]) ++at;
+  }
+  mode = {values[0], values[1], values[2]};
+  return at == text.size();
+}
+
+std::vector<std::string> ResolvePasses(const std::string& post) {
+  if (post == kNoPasses) return {};
+  if (post == kAllPasses) return PostPassNames();
+  std::vector<std::string> chosen;
+  for (const std::string_view name : SplitList(post)) {
+    try {
+      PostPassByName(name);
+    } catch (const std::invalid_argument& error) {
+      throw CLI::ValidationError("--post " + post + ": " + error.what());
+    }
+    if (std::find(chosen.begin(), chosen.end(), name) != chosen.end()) {
+      throw CLI::ValidationError("--post " + post + ": '" + std::string(name) + "' is named twice");
+    }
+    chosen.emplace_back(name);
+  }
+  return chosen;
+}
+
+void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
+  command.add_flag("--quick", options.quick,
+                   "A small run: " + std::to_string(kQuickWidth) + "x" + std::to_string(kQuickHeight) +
+                       " and " + std::to_string(kQuickGroundTruthSamples) +
+                       " ground-truth samples per pixel, unless --width, --height or --gt-samples "
+                       "say otherwise");
+  command
+      .add_option("--modes", options.modes,
+                  "EQAA modes to render, comma-separated S/Z/F (e.g. 8S/4Z/2F); the first is the "
+                  "frame the post passes work on")
+      ->type_name("LIST")
+      ->capture_default_str();
+  AddPatternOption(command, options.pattern);
+  command
+      .add_option("--policy", options.policy,
+                  "Fragment arbitration policy when all F slots are taken (docs/eqaa.md)")
+      ->check(CLI::IsMember(fmask::PolicyNames()))
+      ->capture_default_str();
+  command
+      .add_option("--post", options.post,
+                  "Post passes, comma-separated, run under every dispatch strategy they have: " +
+                      JoinNames(PostPassNames()) + ", or all, or none")
+      ->type_name("LIST")
+      ->capture_default_str();
+}
+
+void AddMachineOptions(CLI::App& command, RunCommandOptions& options) {
+  options.gpu = std::string(sim::kDefaultGpuName);
+  command
+      .add_option("--gpu", options.gpu,
+                  "GPU configuration for occupancy and the timing estimate: a built-in (" +
+                      JoinNames(sim::BuiltinGpuNames()) + ") or a configuration file")
+      ->type_name("NAME|PATH")
+      ->capture_default_str();
+  command
+      .add_option("--flush", options.flush,
+                  "When the pixel-wave packer closes a wave: mix = when 16 quads are in or the "
+                  "bin ends, primitive = also when the primitive changes")
+      ->check(CLI::IsMember({"mix", "primitive"}))
+      ->capture_default_str();
+}
+
+void AddGroundTruthOptions(CLI::App& command, RunCommandOptions& options) {
+  command
+      .add_option("--gt-samples", options.groundTruthSamples,
+                  "Ground-truth rays per pixel, a perfect square (n x n jittered strata)")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  command
+      .add_option("--cache", options.cache,
+                  "Directory of cached ground truths [default: $XDG_CACHE_HOME/aasim/ground-truth "
+                  "or ~/.cache/aasim/ground-truth]")
+      ->type_name("DIR");
+  command.add_flag("--no-cache", options.noCache,
+                   "Render the ground truth without reading or writing the cache");
+}
+
+void AddRunOutputOptions(CLI::App& command, RunCommandOptions& options) {
+  AddThreadsOption(command, options.threads);
+  command
+      .add_option("--progress", options.progress,
+                  "Progress bars on stderr: auto = when stderr is a terminal")
+      ->check(CLI::IsMember(Names(kProgressModes)))
+      ->capture_default_str();
+  command
+      .add_option("--out", options.out,
+                  "Output directory for report.html, report.json, counters.csv and images/ "
+                  "(created if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+}
+
+void CheckGroundTruthSamples(int samples) {
+  int root = 0;
+  while ((root + 1) * (root + 1) <= samples) ++root;
+  if (root * root != samples) {
+    throw CLI::ValidationError("--gt-samples " + std::to_string(samples) +
+                               ": must be a perfect square (e.g. " + std::to_string(root * root) +
+                               " or " + std::to_string((root + 1) * (root + 1)) + ")");
+  }
+}
+
+void CheckMemory(const RunCommandOptions& options) {
+  const std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes,
+                                               options.postPasses.size());
+  if (bytes > kMaxRunBytes) {
+    throw CLI::ValidationError("--width " + std::to_string(options.width) + " --height " +
+                               std::to_string(options.height) + " --modes " + options.modes +
+                               ": needs about " + FormatGiB(bytes) + " GiB, over the " +
+                               FormatGiB(kMaxRunBytes) + " GiB limit");
+  }
+}
+
+}  // namespace
+
+std::vector<fmask::EqaaConfig> ParseEqaaModes(std::string_view list) {
+  std::vector<fmask::EqaaConfig> modes;
+  for (const std::string_view item : SplitList(list)) {
+    fmask::EqaaConfig mode;
+    if (!ParseMode(item, mode)) {
+      throw CLI::ValidationError("--modes: '" + std::string(item) +
+                                 "' is not an EQAA mode S/Z/F such as 8S/4Z/2F");
+    }
+    CheckEqaaMode(mode);
+    if (std::find(modes.begin(), modes.end(), mode) != modes.end()) {
+      throw CLI::ValidationError("--modes: " + fmask::EqaaName(mode) + " is named twice");
+    }
+    modes.push_back(mode);
+  }
+  return modes;
+}
+
+CLI::App* AddRunCommand(CLI::App& app, RunCommandOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "run",
+      "The main job (also what `aasim` alone runs): ray-traced ground truth, the scene rendered "
+      "under several EQAA modes, every post pass under both dispatch strategies, image-quality "
+      "metrics and machine counters; writes report.html, report.json, counters.csv and images");
+  command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  AddViewportOptions(*command, options.scene, options.width, options.height);
+  AddStudyOptions(*command, options);
+  AddMachineOptions(*command, options);
+  AddGroundTruthOptions(*command, options);
+  AddRunOutputOptions(*command, options);
+  return command;
+}
+
+void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
+  if (options.quick) {
+    if (command.count("--width") == 0) options.width = kQuickWidth;
+    if (command.count("--height") == 0) options.height = kQuickHeight;
+    if (command.count("--gt-samples") == 0) options.groundTruthSamples = kQuickGroundTruthSamples;
+  }
+  if (options.noCache && command.count("--cache") > 0) {
+    throw CLI::ValidationError("--cache " + options.cache + " and --no-cache contradict each other");
+  }
+  CheckGroundTruthSamples(options.groundTruthSamples);
+  options.eqaaModes = ParseEqaaModes(options.modes);
+  options.postPasses = ResolvePasses(options.post);
+  for (const NamedProgress& entry : kProgressModes) {
+    if (entry.name == options.progress) options.progressMode = entry.mode;
+  }
+  CheckMemory(options);
+}
+
+std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
+                               std::size_t postPasses) {
+  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+  std::uint64_t largestFrame = 0;
+  for (const fmask::EqaaConfig& mode : modes) {
+    largestFrame = std::max(largestFrame, EstimateFrameBytes(1, 1, mode, 0));
+  }
+  // Ground truth (colour, coverage, edge) and one metrics evaluation's maps and scratch.
+  const std::uint64_t groundTruth = sizeof(glm::vec3) + sizeof(float) + 1;
+  const std::uint64_t metrics = 3 * sizeof(float) + 24 * sizeof(float);
+  // Kept per mode: resolved colour, three error maps, the EQAA planes' resolve and counts.
+  const std::uint64_t perMode = sizeof(glm::vec4) + 3 * sizeof(float) + 8 * sizeof(float);
+  // Per pass and strategy: output, edges, stencil, queue entry; per pass its error maps.
+  const std::uint64_t perPass = 2 * (sizeof(glm::vec4) + sizeof(float) + 1 + sizeof(std::uint32_t)) +
+                                3 * sizeof(float);
+  return pixels * (largestFrame + groundTruth + metrics + modes.size() * perMode + postPasses * perPass);
+}
+
+}  // namespace cli

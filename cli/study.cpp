@@ -1,0 +1,242 @@
+// The main job's computation (see study.h).
+
+#include "cli/study.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <ostream>
+#include <type_traits>
+
+#include <oneapi/tbb/global_control.h>
+
+#include "cli/frame_options.h"
+#include "cli/post_passes.h"
+
+namespace cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// One line per step on the log, with the host time it took; silent with --progress never.
+class StepLog {
+ public:
+  StepLog(std::ostream& out, bool enabled) : out_(out), enabled_(enabled) {}
+  template <typename Body>
+  auto Step(const std::string& what, Body&& body) {
+    const Clock::time_point start = Clock::now();
+    if constexpr (std::is_void_v<decltype(body())>) {
+      body();
+      Done(what, start);
+    } else {
+      auto result = body();
+      Done(what, start);
+      return result;
+    }
+  }
+
+ private:
+  void Done(const std::string& what, Clock::time_point start) {
+    if (!enabled_) return;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f", SecondsSince(start));
+    out_ << "aasim run: " << what << " (" << seconds << " s)\n" << std::flush;
+  }
+  std::ostream& out_;
+  bool enabled_;
+};
+
+scenes::ProgressCallback ProgressBar(const RunCommandOptions& options, std::string label) {
+  switch (options.progressMode) {
+    case ProgressMode::Never: return {};
+    case ProgressMode::Always: return scenes::StderrProgressBar(std::move(label), true);
+    case ProgressMode::Auto: break;
+  }
+  return scenes::StderrProgressBar(std::move(label), false);
+}
+
+StudyGroundTruth RenderGroundTruth(const StudyInputs& inputs, const RunCommandOptions& options) {
+  const Clock::time_point start = Clock::now();
+  scenes::GroundTruthSettings settings;
+  settings.width = options.width;
+  settings.height = options.height;
+  settings.samplesPerPixel = options.groundTruthSamples;
+  const scenes::ProgressCallback progress = ProgressBar(options, "ground truth");
+  StudyGroundTruth truth;
+  if (options.noCache) {
+    truth.image = scenes::RenderGroundTruth(inputs.scene, inputs.scene.camera, settings, progress);
+  } else {
+    const scenes::GroundTruthCache cache(options.cache);
+    scenes::CachedGroundTruth cached = cache.LoadOrRender(inputs.scene, inputs.scene.camera, settings, progress);
+    truth.image = std::move(cached.image);
+    truth.cacheHit = cached.cacheHit;
+    truth.cacheFile = cached.file;
+  }
+  truth.edgeMask.reserve(truth.image.edge.size());
+  for (const std::uint8_t edge : truth.image.edge) truth.edgeMask.push_back(edge != 0 ? 1.0f : 0.0f);
+  truth.colour = sim::Texture2D<glm::vec4>("ground truth", truth.image.width, truth.image.height);
+  for (std::size_t i = 0; i < truth.image.colour.size(); ++i) {
+    truth.colour.Texels()[i] = glm::vec4(truth.image.colour[i], 1.0f);
+  }
+  truth.seconds = SecondsSince(start);
+  return truth;
+}
+
+// Without edge pixels the edge scores have nothing to average: NaN, shown as "n/a" and null.
+passes::QualityResult Score(const sim::Texture2D<glm::vec4>& image, const StudyGroundTruth& groundTruth) {
+  const passes::ImageView test = passes::ViewOf(image), reference = passes::ViewOf(groundTruth.colour);
+  if (passes::CountSelected(groundTruth.edgeMask) > 0) {
+    return passes::ScoreWithMaps(test, reference, groundTruth.edgeMask);
+  }
+  const std::vector<float> everyPixel(groundTruth.edgeMask.size(), 1.0f);
+  passes::QualityResult result = passes::ScoreWithMaps(test, reference, everyPixel);
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  result.scores.edgePsnr = result.scores.edgeSsim = result.scores.edgeFlip = kNone;
+  result.scores.edgePixels = 0;
+  return result;
+}
+
+sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const RunCommandOptions& options,
+                                    std::size_t mode) {
+  sim::FrameSettings settings;
+  settings.width = options.width;
+  settings.height = options.height;
+  settings.eqaa = options.eqaaModes[mode];
+  settings.pattern = inputs.patterns[mode];
+  settings.policy = fmask::PolicyByName(options.policy);
+  settings.flush = WaveFlushByName(options.flush);
+  ApplyLighting(inputs.scene.lighting, settings);
+  return settings;
+}
+
+// Bitwise: the strategies promise identical bits, not equal values.
+template <typename T>
+void CountDifferences(const sim::Texture2D<T>& a, const sim::Texture2D<T>& b, StudyPass& pass) {
+  for (int y = 0; y < a.Height(); ++y) {
+    for (int x = 0; x < a.Width(); ++x) {
+      if (std::memcmp(&a.At(x, y), &b.At(x, y), sizeof(T)) == 0) continue;
+      if (pass.differingPixels++ == 0) {
+        pass.firstDifferenceX = x;
+        pass.firstDifferenceY = y;
+      }
+    }
+  }
+}
+
+class StudyRunner {
+ public:
+  StudyRunner(const StudyInputs& inputs, const RunCommandOptions& options, std::ostream& log)
+      : inputs_(inputs), options_(options), log_(log, options.progressMode != ProgressMode::Never),
+        machine_(inputs.gpu) {}
+
+  Study Run(const FrameCallback& onFrame) {
+    const Clock::time_point start = Clock::now();
+    study_.sceneName = inputs_.scene.name;
+    study_.triangles = inputs_.scene.TriangleCount();
+    study_.gpu = inputs_.gpu;
+    study_.groundTruth = log_.Step(GroundTruthStep(), [&] { return RenderGroundTruth(inputs_, options_); });
+    for (std::size_t mode = 0; mode < options_.eqaaModes.size(); ++mode) RunMode(mode, onFrame);
+    study_.dispatches = machine_.Reports();
+    study_.hostSeconds = SecondsSince(start);
+    return std::move(study_);
+  }
+
+ private:
+  std::string GroundTruthStep() const {
+    return "ground truth " + std::to_string(options_.width) + "x" + std::to_string(options_.height) + ", " +
+           std::to_string(options_.groundTruthSamples) + " rays per pixel" +
+           (options_.noCache ? "" : " (cache: " + options_.cache + ")");
+  }
+
+  void RunMode(std::size_t mode, const FrameCallback& onFrame) {
+    const std::string label = fmask::EqaaName(options_.eqaaModes[mode]);
+    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, options_, mode));
+    StudyFrame frame{options_.eqaaModes[mode],
+                     {label, "frames/" + ModeSlug(options_.eqaaModes[mode]), {"frame colour", 1, 1}, {}},
+                     {},
+                     machine_.Reports().size()};
+    log_.Step("frame " + label, [&] { pipeline.Render(inputs_.frame.Geometry()); });
+    Tag(label, "");
+    frame.image.colour = pipeline.Colour();
+    frame.fragments = pipeline.Fragments();
+    frame.image.quality = log_.Step("metrics " + label, [&] { return Score(frame.image.colour, study_.groundTruth); });
+    if (onFrame) onFrame(frame, pipeline);
+    // Post-process AA works on the aliased frame a renderer without MSAA produces: the first mode.
+    if (mode == 0) {
+      for (const std::string& name : options_.postPasses) RunPass(PostPassByName(name), pipeline, label);
+    }
+    study_.frames.push_back(std::move(frame));
+  }
+
+  void RunPass(const PostPass& pass, const sim::FramePipeline& pipeline, const std::string& frameLabel) {
+    StudyPass result{std::string(pass.name), std::string(pass.studiedDispatch), frameLabel,
+                     {std::string(pass.name), "passes/" + std::string(pass.name), {"pass output", 1, 1}, {}},
+                     0, {}, 0, 0, 0};
+    for (const passes::Strategy strategy : pass.strategies) {
+      const std::string strategyName(passes::StrategyName(strategy));
+      StudyPassRun run{strategy, machine_.Reports().size(), 0, {"edges", 1, 1}};
+      PostPassOutput output = log_.Step("pass " + std::string(pass.name) + " [" + strategyName + "]",
+                                        [&] { return pass.run(machine_, pipeline, strategy); });
+      run.endDispatch = machine_.Reports().size();
+      Tag(frameLabel, strategyName);
+      if (result.runs.empty()) {
+        result.image.colour = std::move(output.image);
+        result.edgePixels = output.edgePixels;
+      } else {
+        CountDifferences(result.image.colour, output.image, result);
+        CountDifferences(result.runs.front().edges, output.edges, result);
+      }
+      run.edges = std::move(output.edges);
+      result.runs.push_back(std::move(run));
+    }
+    result.image.quality = log_.Step("metrics " + std::string(pass.name),
+                                     [&] { return Score(result.image.colour, study_.groundTruth); });
+    study_.passes.push_back(std::move(result));
+  }
+
+  // Labels the dispatches added since the last call.
+  void Tag(const std::string& frame, const std::string& strategy) {
+    const std::size_t count = machine_.Reports().size();
+    study_.dispatchFrames.resize(count, frame);
+    study_.dispatchStrategies.resize(count, strategy);
+  }
+
+  const StudyInputs& inputs_;
+  const RunCommandOptions& options_;
+  StepLog log_;
+  sim::Machine machine_;
+  Study study_;
+};
+
+}  // namespace
+
+std::string ModeSlug(const fmask::EqaaConfig& mode) {
+  return std::to_string(mode.coverageSamples) + "s-" + std::to_string(mode.depthSamples) + "z-" +
+         std::to_string(mode.fragments) + "f";
+}
+
+StudyInputs LoadStudyInputs(const RunCommandOptions& options) {
+  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
+  StudyInputs inputs{scenes::LoadScene(options.scene, aspect), {}, {}, sim::GpuConfigByName(options.gpu)};
+  inputs.frame = ToFrameScene(inputs.scene, aspect);
+  for (const fmask::EqaaConfig& mode : options.eqaaModes) {
+    inputs.patterns.push_back(raster::ResolvePattern(options.pattern, mode.coverageSamples));
+  }
+  return inputs;
+}
+
+Study RunStudy(const StudyInputs& inputs, const RunCommandOptions& options, const FrameCallback& onFrame,
+               std::ostream& log) {
+  StudyRunner runner(inputs, options, log);
+  Study study = runner.Run(onFrame);
+  study.threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  return study;
+}
+
+}  // namespace cli

@@ -1,0 +1,111 @@
+#pragma once
+// The main job's computation (`aasim run`): the ray-traced ground truth, the scene rendered on
+// the modelled GPU under every requested EQAA mode, every post pass under each of its dispatch
+// strategies on the first mode's frame, and every image scored against the ground truth. The
+// result keeps what the report shows; per-frame surfaces too large to keep (EQAA planes, pixel
+// targets) are handed to a callback while they exist.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "cli/frame_input.h"
+#include "cli/run_options.h"
+#include "raster/sample_pattern.h"
+#include "scenes/scene.h"
+#include "passes/demo_edge_blend.h"
+#include "passes/metrics.h"
+#include "scenes/ground_truth.h"
+#include "sim/dispatch.h"
+#include "sim/frame.h"
+
+namespace cli {
+
+// An image scored against the ground truth. Edge scores are NaN when the ground truth has no
+// edge pixels (nothing to restrict them to).
+struct ScoredImage {
+  std::string label;   // "8S/4Z/2F", "demo"
+  std::string folder;  // output folder of its files: "frames/8s-4z-2f", "passes/demo"
+  sim::Texture2D<glm::vec4> colour;
+  passes::QualityResult quality;
+};
+
+struct StudyFrame {
+  fmask::EqaaConfig mode;
+  ScoredImage image;
+  fmask::FragmentCounters fragments;
+  std::size_t drawDispatch = 0;  // index into Study::dispatches
+};
+
+struct StudyPassRun {
+  passes::Strategy strategy;
+  std::size_t firstDispatch = 0, endDispatch = 0;  // [first, end) in Study::dispatches
+  sim::Texture2D<float> edges;
+};
+
+struct StudyPass {
+  std::string name;
+  std::string studiedDispatch;
+  std::string inputFrame;  // label of the frame it post-processed
+  ScoredImage image;       // the first strategy's output; the others are bit-identical or flagged
+  std::uint64_t edgePixels = 0;
+  std::vector<StudyPassRun> runs;
+  // Pixels where a strategy's output or edge mask differs from the first's (0 = identical), and
+  // the first such pixel.
+  std::uint64_t differingPixels = 0;
+  int firstDifferenceX = 0, firstDifferenceY = 0;
+};
+
+struct StudyGroundTruth {
+  scenes::GroundTruthImage image;
+  sim::Texture2D<glm::vec4> colour{"ground truth", 1, 1};  // image.colour as RGBA, for the metrics
+  std::vector<float> edgeMask;  // the metrics' mask: 1 on edge pixels
+  bool cacheHit = false;
+  std::filesystem::path cacheFile;  // empty with --no-cache
+  double seconds = 0.0;
+};
+
+struct Study {
+  std::string sceneName;
+  std::size_t triangles = 0;
+  StudyGroundTruth groundTruth;
+  std::vector<StudyFrame> frames;
+  std::vector<StudyPass> passes;
+  sim::GpuConfig gpu;
+  std::vector<sim::DispatchReport> dispatches;
+  // Parallel to dispatches: the frame each dispatch belongs to, and the strategy of the post
+  // pass it ran in ("" outside post passes).
+  std::vector<std::string> dispatchFrames;
+  std::vector<std::string> dispatchStrategies;
+  int threads = 0;
+  double hostSeconds = 0.0;
+};
+
+// Everything read from files or tables, loaded before any output exists.
+struct StudyInputs {
+  scenes::Scene scene;
+  FrameScene frame;
+  std::vector<raster::SamplePattern> patterns;  // per mode of options.eqaaModes
+  sim::GpuConfig gpu;
+};
+
+// Throws a one-line error naming the input (scene, pattern, GPU configuration).
+StudyInputs LoadStudyInputs(const RunCommandOptions& options);
+
+// Called once per mode while its frame pipeline still holds the full surfaces.
+using FrameCallback = std::function<void(const StudyFrame&, const sim::FramePipeline&)>;
+
+// "8S/4Z/2F" -> "8s-4z-2f", for folder names.
+std::string ModeSlug(const fmask::EqaaConfig& mode);
+
+// `options` must have passed ResolveRunOptions; the caller pins the thread count. Steps are
+// logged on `log` (one line each, with host times) unless --progress never; progress bars on
+// stderr follow --progress.
+Study RunStudy(const StudyInputs& inputs, const RunCommandOptions& options,
+               const FrameCallback& onFrame, std::ostream& log);
+
+}  // namespace cli

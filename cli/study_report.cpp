@@ -1,0 +1,506 @@
+// The main job's outputs (see study_report.h).
+
+#include "cli/study_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli/counters_json.h"
+#include "cli/dispatch_output.h"
+#include "cli/eqaa_output.h"
+#include "cli/frame_output.h"
+#include "cli/image_io.h"
+#include "cli/post_passes.h"
+#include "cli/report_images.h"
+#include "cli/text_io.h"
+#include "passes/demo_edge_blend.h"
+
+namespace cli {
+namespace {
+
+// Previews at most this wide keep report.html a few MB at 1080p; full images are in images/.
+constexpr int kPreviewMaxWidth = 960;
+// Crops of the hardest regions: three windows of about 1/16 of the image height, shown at
+// roughly 256 pixels.
+constexpr int kCropCount = 3;
+constexpr int kCropDisplayPixels = 256;
+constexpr const char* kEstimateNote =
+    "Times are estimates of the timing model (docs/timing-model.md) on the configured GPU, not "
+    "measurements.";
+
+const std::string kImages = "images/";
+
+std::string Fixed(double value, int decimals) {
+  if (!std::isfinite(value)) return std::isnan(value) ? "n/a" : (value > 0 ? "inf" : "-inf");
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+std::string Percent(std::uint64_t part, std::uint64_t whole) {
+  return whole == 0 ? "-" : Fixed(100.0 * double(part) / double(whole), 1);
+}
+
+// ---- Files ----------------------------------------------------------------------------------
+
+void StageColour(OutputDir& dir, const std::string& path, const sim::Texture2D<glm::vec4>& colour) {
+  WritePng(dir.Stage(path), colour.Width(), colour.Height(), 3, SrgbImage(colour.Texels()));
+}
+
+void StageErrorFiles(OutputDir& dir, const ScoredImage& image) {
+  const int width = image.colour.Width(), height = image.colour.Height();
+  const passes::QualityMaps& maps = image.quality.maps;
+  const ExrChannel channels[] = {
+      {"squared_error", maps.squaredError}, {"ssim_error", maps.ssimError}, {"flip", maps.flip}};
+  WriteExr(dir.Stage(kImages + image.folder + "/error.exr"), width, height, channels);
+  const RgbImage flip = ErrorPreview(maps.flip, width, height, 1.0f, 1);
+  WritePng(dir.Stage(kImages + image.folder + "/flip.png"), flip.width, flip.height, 3, flip.rgb);
+}
+
+void StageGroundTruth(OutputDir& dir, const StudyGroundTruth& truth) {
+  const scenes::GroundTruthImage& image = truth.image;
+  std::vector<float> r, g, b;
+  for (const glm::vec3& colour : image.colour) {
+    r.push_back(colour.r);
+    g.push_back(colour.g);
+    b.push_back(colour.b);
+  }
+  const ExrChannel channels[] = {
+      {"R", r}, {"G", g}, {"B", b}, {"coverage", image.coverage}, {"edge", truth.edgeMask}};
+  WriteExr(dir.Stage(kImages + "ground-truth/ground-truth.exr"), image.width, image.height, channels);
+  WritePng(dir.Stage(kImages + "ground-truth/colour.png"), image.width, image.height, 3, SrgbImage(truth.colour.Texels()));
+  WritePng(dir.Stage(kImages + "ground-truth/edges.png"), image.width, image.height, 1, MaskImage(truth.edgeMask));
+}
+
+void StagePassFiles(OutputDir& dir, const StudyPass& pass) {
+  StageColour(dir, kImages + pass.image.folder + "/output.png", pass.image.colour);
+  StageErrorFiles(dir, pass.image);
+  for (const StudyPassRun& run : pass.runs) {
+    const std::string path =
+        kImages + pass.image.folder + "/" + std::string(passes::StrategyName(run.strategy)) + "/edges.png";
+    WritePng(dir.Stage(path), run.edges.Width(), run.edges.Height(), 1, MaskImage(run.edges.Texels()));
+  }
+}
+
+std::string HeatFolder(const Study& study, std::size_t dispatch) {
+  for (const StudyFrame& frame : study.frames) {
+    if (frame.image.label == study.dispatchFrames[dispatch]) return kImages + "heat/" + ModeSlug(frame.mode) + "/";
+  }
+  return kImages + "heat/";
+}
+
+void StageHeatMaps(OutputDir& dir, const Study& study) {
+  for (std::size_t i = 0; i < study.dispatches.size(); ++i) {
+    const sim::DispatchReport& report = study.dispatches[i];
+    if (report.heat.Empty()) continue;
+    const std::string stem = HeatFolder(study, i) + HeatMapStem(i, report.name, study.dispatchStrategies[i]);
+    WriteHeatMap(report.heat, dir.Stage(stem + ".exr"), dir.Stage(stem + ".png"));
+  }
+}
+
+// ---- report.json and the CSV files -------------------------------------------------------------
+
+nlohmann::ordered_json Number(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
+}
+
+nlohmann::ordered_json QualityJson(const passes::QualityScores& s) {
+  return {{"psnr_db", Number(s.psnr)},          {"ssim", Number(s.ssim)},
+          {"flip", Number(s.flip)},             {"edge_psnr_db", Number(s.edgePsnr)},
+          {"edge_ssim", Number(s.edgeSsim)},    {"edge_flip", Number(s.edgeFlip)},
+          {"edge_pixels", s.edgePixels}};
+}
+
+nlohmann::ordered_json IndexRange(std::size_t first, std::size_t end) {
+  nlohmann::ordered_json indices = nlohmann::ordered_json::array();
+  for (std::size_t i = first; i < end; ++i) indices.push_back(i);
+  return indices;
+}
+
+double PassMicroseconds(const Study& study, const StudyPassRun& run) {
+  double total = 0.0;
+  for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) total += study.dispatches[i].time.totalMicroseconds;
+  return total;
+}
+
+nlohmann::ordered_json FrameJson(const StudyFrame& frame, const RunCommandOptions& options) {
+  return {{"mode", frame.image.label},
+          {"samples", frame.mode.coverageSamples},
+          {"depth_samples", frame.mode.depthSamples},
+          {"fragments", frame.mode.fragments},
+          {"pattern", options.pattern},
+          {"policy", options.policy},
+          {"folder", kImages + frame.image.folder},
+          {"draw_dispatch", frame.drawDispatch},
+          {"quality", QualityJson(frame.image.quality.scores)},
+          {"fragment_counters", FragmentCountersJson(frame.fragments)}};
+}
+
+nlohmann::ordered_json PassJson(const Study& study, const StudyPass& pass) {
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  for (const StudyPassRun& run : pass.runs) {
+    runs.push_back({{"strategy", passes::StrategyName(run.strategy)},
+                    {"dispatches", IndexRange(run.firstDispatch, run.endDispatch)},
+                    {"estimated_us_total", PassMicroseconds(study, run)}});
+  }
+  return {{"name", pass.name},
+          {"input_frame", pass.inputFrame},
+          {"studied_dispatch", pass.studiedDispatch},
+          {"folder", kImages + pass.image.folder},
+          {"edge_pixels", pass.edgePixels},
+          {"strategies_identical", pass.differingPixels == 0},
+          {"differing_pixels", pass.differingPixels},
+          {"quality", QualityJson(pass.image.quality.scores)},
+          {"strategies", runs}};
+}
+
+std::string QualityCsv(const Study& study) {
+  std::string csv = "image,kind,psnr_db,ssim,flip,edge_psnr_db,edge_ssim,edge_flip,edge_pixels\n";
+  auto row = [&](const ScoredImage& image, const char* kind) {
+    const passes::QualityScores& s = image.quality.scores;
+    for (const std::string& field :
+         {CsvField(image.label), std::string(kind), Fixed(s.psnr, 4), Fixed(s.ssim, 6), Fixed(s.flip, 6),
+          Fixed(s.edgePsnr, 4), Fixed(s.edgeSsim, 6), Fixed(s.edgeFlip, 6), std::to_string(s.edgePixels)}) {
+      csv += field;
+      csv += ',';
+    }
+    csv.back() = '\n';
+  };
+  for (const StudyFrame& frame : study.frames) row(frame.image, "frame");
+  for (const StudyPass& pass : study.passes) row(pass.image, "pass");
+  return csv;
+}
+
+// ---- report.html -------------------------------------------------------------------------------
+
+ReportImage Embed(const std::string& title, const RgbImage& image, int displayScale = 1) {
+  return {title, EncodePng(image.width, image.height, 3, image.rgb), image.width, image.height, displayScale};
+}
+
+// Every image the report compares, ground truth first, in one list.
+struct Shown {
+  std::string label;
+  const sim::Texture2D<glm::vec4>* colour;
+  const ScoredImage* scored;  // null for the ground truth
+};
+
+std::vector<Shown> ShownImages(const Study& study, const sim::Texture2D<glm::vec4>& truth) {
+  std::vector<Shown> shown{{"ground truth (" + std::to_string(study.groundTruth.image.samplesPerPixel) + " rays/px)",
+                            &truth, nullptr}};
+  for (const StudyFrame& frame : study.frames) shown.push_back({frame.image.label, &frame.image.colour, &frame.image});
+  for (const StudyPass& pass : study.passes) {
+    shown.push_back({pass.name + " on " + pass.inputFrame, &pass.image.colour, &pass.image});
+  }
+  return shown;
+}
+
+ReportSection RunSection(const Study& study, const RunCommandOptions& options) {
+  const StudyGroundTruth& truth = study.groundTruth;
+  std::string modes;
+  for (const StudyFrame& frame : study.frames) modes += (modes.empty() ? "" : ", ") + frame.image.label;
+  ReportSection section{"Run", {}, {}, {}, {}};
+  section.paragraphs = {
+      "Scene " + study.sceneName + " (" + std::to_string(study.triangles) + " triangles) at " +
+          std::to_string(options.width) + "x" + std::to_string(options.height) + ", rendered on the modelled GPU '" +
+          study.gpu.name + "' under " + modes + " (pattern " + options.pattern + ", arbitration policy " +
+          options.policy + ").",
+      "Ground truth: Embree, " + std::to_string(truth.image.samplesPerPixel) +
+          " stratified rays per pixel, box filter, the same material model; " +
+          std::to_string(passes::CountSelected(truth.edgeMask)) + " edge pixels (pixels whose rays saw more than one "
+          "primitive). " + (truth.cacheHit ? "Read from the cache." : "Rendered for this run.") +
+          " Post passes work on the " + (study.frames.empty() ? std::string("-") : study.frames.front().image.label) +
+          " frame.",
+      kEstimateNote,
+      "Host time " + Fixed(study.hostSeconds, 1) + " s on " + std::to_string(study.threads) +
+          " threads (the simulator's own wall time, not a GPU time). Full-resolution images, EXR layers and every "
+          "counter are in images/, report.json, counters.csv and quality.csv next to this file."};
+  return section;
+}
+
+ReportSection ImagesSection(const std::vector<Shown>& shown, int width, int height) {
+  const int factor = PreviewFactor(width, kPreviewMaxWidth);
+  ReportSection section{"Images", {}, {}, {}, {}};
+  section.paragraphs.push_back(factor == 1 ? "Full resolution."
+                                           : "Previews averaged over " + std::to_string(factor) + "x" +
+                                                 std::to_string(factor) + " pixels; the hardest regions below are "
+                                                 "at full resolution.");
+  for (const Shown& image : shown) {
+    section.images.push_back(Embed(image.label, Preview(image.colour->Texels(), width, height, factor)));
+  }
+  return section;
+}
+
+// Where the first frame (the aliased one) is furthest from the ground truth by FLIP: one section
+// per region, every image cropped to it.
+std::vector<ReportSection> CropSections(const Study& study, const std::vector<Shown>& shown, int width, int height) {
+  if (study.frames.empty()) return {};
+  const int size = std::min({std::max(8, height / 16 / 8 * 8), width, height});
+  const int zoom = std::max(1, kCropDisplayPixels / size);
+  const std::string& aliased = study.frames.front().image.label;
+  std::vector<ReportSection> sections;
+  for (const PixelRect& rect :
+       HardestRegions(study.frames.front().image.quality.maps.flip, width, height, size, kCropCount)) {
+    const std::string where = "(" + std::to_string(rect.x) + ", " + std::to_string(rect.y) + ")";
+    ReportSection section{"Hard region " + std::to_string(sections.size() + 1) + ": " + std::to_string(size) + "x" +
+                              std::to_string(size) + " pixels at " + where,
+                          {}, {}, {}, {}};
+    if (sections.empty()) {
+      section.paragraphs.push_back("The windows where " + aliased + " has the largest total FLIP error, shown x" +
+                                   std::to_string(zoom) + " with nearest-neighbour pixels.");
+    }
+    for (const Shown& image : shown) {
+      section.images.push_back(Embed(image.label, Crop(image.colour->Texels(), width, rect), zoom));
+    }
+    sections.push_back(std::move(section));
+  }
+  return sections;
+}
+
+ReportSection QualitySection(const std::vector<Shown>& shown) {
+  ReportSection section{"Quality against the ground truth", {}, {}, {}, {}};
+  section.paragraphs.push_back(
+      "PSNR (dB, higher is better) and SSIM (1 is identical) on sRGB-encoded values, LDR-FLIP (0 is identical) on "
+      "linear colour; \"edge\" columns average over the ground truth's edge pixels only (docs/metrics.md).");
+  ReportTable table{"Scores", {"image", "PSNR", "SSIM", "FLIP", "edge PSNR", "edge SSIM", "edge FLIP"}, {}};
+  BarChart chart{"Mean FLIP error (lower is better)", "FLIP", {}, {"all pixels", "edge pixels"}, {{}, {}}, false};
+  for (const Shown& image : shown) {
+    if (image.scored == nullptr) continue;
+    const passes::QualityScores& s = image.scored->quality.scores;
+    table.rows.push_back({image.label, Fixed(s.psnr, 2), Fixed(s.ssim, 4), Fixed(s.flip, 4), Fixed(s.edgePsnr, 2),
+                          Fixed(s.edgeSsim, 4), Fixed(s.edgeFlip, 4)});
+    chart.categories.push_back(image.label);
+    chart.values[0].push_back(s.flip);
+    chart.values[1].push_back(std::isfinite(s.edgeFlip) ? s.edgeFlip : 0.0);
+  }
+  section.tables.push_back(std::move(table));
+  section.charts.push_back(std::move(chart));
+  return section;
+}
+
+ReportSection ErrorMapsSection(const std::vector<Shown>& shown, int width, int height) {
+  const int factor = PreviewFactor(width, kPreviewMaxWidth);
+  ReportSection section{"Error maps", {}, {}, {}, {}};
+  section.paragraphs.push_back("Per-pixel FLIP error against the ground truth, black (0) to pale yellow (1), magma "
+                               "colour map" + std::string(factor > 1 ? ", averaged like the previews." : "."));
+  for (const Shown& image : shown) {
+    if (image.scored == nullptr) continue;
+    section.images.push_back(
+        Embed("FLIP: " + image.label, ErrorPreview(image.scored->quality.maps.flip, width, height, 1.0f, factor)));
+  }
+  return section;
+}
+
+ReportImage HeatImage(const std::string& title, const sim::TileHeatMap& heat) {
+  const HeatMapImage preview = HeatMapPreview(heat);
+  return {title, EncodePng(preview.width, preview.height, 3, preview.rgb), preview.width, preview.height, 1};
+}
+
+ReportSection FramesSection(const Study& study) {
+  ReportSection section{"EQAA frames", {}, {}, {}, {}};
+  section.paragraphs.push_back(
+      "The material draw of each mode: lanes of its pixel waves (helpers are uncovered pixels of live quads), the "
+      "colour block's fragment counters (docs/eqaa.md), and a lane-utilization heat map per 8x8 tile (dark blue 0, "
+      "yellow 1, grey: no lanes). " + std::string(kEstimateNote));
+  ReportTable lanes{"Material draw", {"mode", "waves", "lanes launched", "active %", "helper %", "dead (empty) %",
+                                      "DRAM MB", "est. µs"}, {}};
+  ReportTable fragments{"Colour block counters", {"counter"}, {}};
+  for (const StudyFrame& frame : study.frames) {
+    const sim::DispatchReport& draw = study.dispatches[frame.drawDispatch];
+    const sim::LaneCounters& l = draw.lanes;
+    lanes.rows.push_back({frame.image.label, std::to_string(l.waves), std::to_string(l.lanesLaunched),
+                          Percent(l.lanesActive, l.lanesLaunched), Percent(l.lanesHelper, l.lanesLaunched),
+                          Percent(l.lanesDeadEmpty, l.lanesLaunched), Fixed(double(draw.DramBytes()) / 1e6, 2),
+                          Fixed(draw.time.totalMicroseconds, 1)});
+    fragments.header.push_back(frame.image.label);
+    std::size_t row = 0;
+    frame.fragments.ForEach([&](const char* name, std::uint64_t value) {
+      // The per-count histograms are in report.json; the table keeps the events.
+      if (std::string_view(name).starts_with("fragments/before_") || std::string_view(name).starts_with("fragments/after_")) {
+        return;
+      }
+      if (row == fragments.rows.size()) fragments.rows.push_back({name});
+      fragments.rows[row++].push_back(std::to_string(value));
+    });
+    if (!draw.heat.Empty()) section.images.push_back(HeatImage("material draw, " + frame.image.label, draw.heat));
+  }
+  section.tables = {std::move(lanes), std::move(fragments)};
+  return section;
+}
+
+std::string DispatchLabel(const Study& study, std::size_t i) {
+  return study.dispatches[i].name + " [" + study.dispatchStrategies[i] + "]";
+}
+
+void AddLanes(BarChart& chart, const std::string& label, const sim::LaneCounters& lanes) {
+  chart.categories.push_back(label);
+  chart.values[0].push_back(double(lanes.lanesActive));
+  chart.values[1].push_back(double(lanes.lanesHelper));
+  chart.values[2].push_back(double(lanes.lanesDeadStencil));
+  chart.values[3].push_back(double(lanes.lanesDeadEmpty));
+}
+
+BarChart LanesChart(std::string title) {
+  return {std::move(title), "lanes", {}, {"active", "helper", "dead (stencil)", "dead (empty)"}, {{}, {}, {}, {}}, true};
+}
+
+void AddStrategyCharts(ReportSection& section, const Study& study, const StudyPass& pass) {
+  BarChart studied = LanesChart("Lanes launched by " + pass.studiedDispatch);
+  BarChart lanes = LanesChart("Lanes by kind, every dispatch of the pass");
+  BarChart waves{"Waves per dispatch", "waves", {}, {"waves"}, {{}}, false};
+  BarChart bytes{"DRAM traffic per dispatch (distinct 64-byte lines)", "MB", {}, {"DRAM"}, {{}}, false};
+  BarChart time{"Estimated time (an estimate: docs/timing-model.md)", "µs", {}, {"dispatch"}, {{}}, false};
+  for (const StudyPassRun& run : pass.runs) {
+    for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) {
+      const sim::DispatchReport& report = study.dispatches[i];
+      const std::string label = DispatchLabel(study, i);
+      for (BarChart* chart : {&waves, &bytes, &time}) chart->categories.push_back(label);
+      AddLanes(lanes, label, report.lanes);
+      if (report.name == pass.studiedDispatch) AddLanes(studied, label, report.lanes);
+      waves.values[0].push_back(double(report.lanes.waves));
+      bytes.values[0].push_back(double(report.DramBytes()) / 1e6);
+      time.values[0].push_back(report.time.totalMicroseconds);
+    }
+    time.categories.push_back("whole pass [" + std::string(passes::StrategyName(run.strategy)) + "]");
+    time.values[0].push_back(PassMicroseconds(study, run));
+  }
+  section.charts = {std::move(studied), std::move(lanes), std::move(waves), std::move(bytes), std::move(time)};
+}
+
+std::span<const sim::DispatchReport> RunDispatches(const Study& study, const StudyPassRun& run) {
+  return std::span(study.dispatches).subspan(run.firstDispatch, run.endDispatch - run.firstDispatch);
+}
+
+ReportSection PassSection(const Study& study, const StudyPass& pass) {
+  ReportSection section{"Dispatch strategies: " + pass.name, {}, {}, {}, {}};
+  section.paragraphs.push_back(
+      std::string(PostPassByName(pass.name).description) + ", on the " + pass.inputFrame + " frame; " +
+      std::to_string(pass.edgePixels) + " edge pixels. Stencil: a full-screen pixel shader culled by stencil "
+      "(quads run when any pixel passes, 16 quads per wave). Queue: edge pixels appended to a buffer, then an "
+      "indirect compute dispatch over exactly that many items.");
+  section.paragraphs.push_back(
+      pass.differingPixels == 0
+          ? "The strategies' outputs and edge masks are bit-identical."
+          : "The strategies' outputs DIFFER in " + std::to_string(pass.differingPixels) + " pixels, first at (" +
+                std::to_string(pass.firstDifferenceX) + ", " + std::to_string(pass.firstDifferenceY) + "): a bug.");
+  if (pass.runs.size() == 2) {
+    const StudyPassRun &a = pass.runs[0], &b = pass.runs[1];
+    std::vector<std::vector<std::string>> rows =
+        DispatchComparisonRows(pass.studiedDispatch, passes::StrategyName(a.strategy), RunDispatches(study, a),
+                               passes::StrategyName(b.strategy), RunDispatches(study, b));
+    ReportTable table{pass.studiedDispatch + " under both strategies", rows.front(), {}};
+    table.rows.assign(rows.begin() + 1, rows.end());
+    section.tables.push_back(std::move(table));
+  }
+  AddStrategyCharts(section, study, pass);
+  for (const StudyPassRun& run : pass.runs) {
+    for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) {
+      if (study.dispatches[i].name == pass.studiedDispatch && !study.dispatches[i].heat.Empty()) {
+        section.images.push_back(HeatImage("lane utilization, " + DispatchLabel(study, i), study.dispatches[i].heat));
+      }
+    }
+  }
+  return section;
+}
+
+ReportSection DispatchesSection(const Study& study) {
+  ReportSection section{"All dispatches", {kEstimateNote}, {}, {}, {}};
+  std::vector<std::vector<std::string>> rows = DispatchSummaryRows(study.dispatches, study.dispatchStrategies);
+  ReportTable table{"Per dispatch (every counter: counters.csv, report.json)", {"frame"}, {}};
+  table.header.insert(table.header.end(), rows.front().begin(), rows.front().end());
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    std::vector<std::string> row{study.dispatchFrames[i - 1]};
+    row.insert(row.end(), rows[i].begin(), rows[i].end());
+    table.rows.push_back(std::move(row));
+  }
+  section.tables.push_back(std::move(table));
+  return section;
+}
+
+}  // namespace
+
+void StageFrameFiles(OutputDir& dir, const StudyFrame& frame, const sim::FramePipeline& pipeline) {
+  const std::string folder = kImages + frame.image.folder + "/";
+  StageColour(dir, folder + "colour.png", frame.image.colour);
+  WriteFrameExr(dir.Stage(folder + "frame.exr"), pipeline);
+  const EqaaPlanes planes = ReadEqaaPlanes(pipeline.Eqaa());
+  WriteEqaaExr(dir.Stage(folder + "eqaa.exr"), planes);
+  WritePng(dir.Stage(folder + "fmask.png"), planes.width, planes.height, 3, FmaskImage(planes));
+  StageErrorFiles(dir, frame.image);
+}
+
+nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, int threads) {
+  nlohmann::ordered_json modes = nlohmann::ordered_json::array();
+  for (const fmask::EqaaConfig& mode : options.eqaaModes) modes.push_back(fmask::EqaaName(mode));
+  return {{"scene", options.scene},
+          {"width", options.width},
+          {"height", options.height},
+          {"quick", options.quick},
+          {"modes", modes},
+          {"pattern", options.pattern},
+          {"policy", options.policy},
+          {"gpu", options.gpu},
+          {"flush", options.flush},
+          {"post", options.postPasses},
+          {"gt_samples", options.groundTruthSamples},
+          {"cache", options.noCache ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cache)},
+          {"threads", threads}};
+}
+
+nlohmann::ordered_json StudyJson(const Study& study, const RunCommandOptions& options) {
+  const StudyGroundTruth& truth = study.groundTruth;
+  nlohmann::ordered_json json = {
+      {"schema", kReportSchema},
+      {"version", kReportVersion},
+      {"configuration", RunConfigurationJson(options, study.threads)},
+      {"scene", {{"name", study.sceneName}, {"triangles", study.triangles}}},
+      {"ground_truth",
+       {{"samples_per_pixel", truth.image.samplesPerPixel},
+        {"edge_pixels", passes::CountSelected(truth.edgeMask)},
+        {"cache_hit", truth.cacheHit},
+        {"cache_file", truth.cacheFile.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(truth.cacheFile.string())},
+        {"folder", kImages + "ground-truth"},
+        {"host_seconds", truth.seconds}}},
+      {"metrics", "psnr_db and ssim on sRGB-encoded values, flip (LDR) on linear colour; edge_* over the ground "
+                  "truth's edge pixels; null = infinite (identical) PSNR or no edge pixels; docs/metrics.md"},
+      {"frames", nlohmann::ordered_json::array()},
+      {"passes", nlohmann::ordered_json::array()},
+      {"dispatches", DispatchReportsJson(study.dispatches, study.gpu, nlohmann::ordered_json::object(),
+                                         study.dispatchStrategies, study.dispatchFrames)},
+      {"host_seconds", study.hostSeconds},
+  };
+  // The configuration is echoed once, at the top.
+  json["dispatches"].erase("configuration");
+  for (const StudyFrame& frame : study.frames) json["frames"].push_back(FrameJson(frame, options));
+  for (const StudyPass& pass : study.passes) json["passes"].push_back(PassJson(study, pass));
+  return json;
+}
+
+Report StudyHtml(const Study& study, const RunCommandOptions& options) {
+  const std::vector<Shown> shown = ShownImages(study, study.groundTruth.colour);
+  const int width = options.width, height = options.height;
+  Report report{"aasim report: " + study.sceneName, {}, RunConfigurationJson(options, study.threads).dump(2)};
+  report.sections = {RunSection(study, options), ImagesSection(shown, width, height)};
+  for (ReportSection& crop : CropSections(study, shown, width, height)) report.sections.push_back(std::move(crop));
+  report.sections.push_back(QualitySection(shown));
+  report.sections.push_back(ErrorMapsSection(shown, width, height));
+  report.sections.push_back(FramesSection(study));
+  for (const StudyPass& pass : study.passes) report.sections.push_back(PassSection(study, pass));
+  report.sections.push_back(DispatchesSection(study));
+  return report;
+}
+
+void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions& options) {
+  StageGroundTruth(dir, study.groundTruth);
+  for (const StudyPass& pass : study.passes) StagePassFiles(dir, pass);
+  StageHeatMaps(dir, study);
+  WriteJson(dir.Stage("report.json"), StudyJson(study, options));
+  WriteText(dir.Stage("counters.csv"),
+            DispatchReportsCsv(study.dispatches, study.dispatchStrategies, study.dispatchFrames));
+  WriteText(dir.Stage("quality.csv"), QualityCsv(study));
+  WriteText(dir.Stage("report.html"), RenderHtml(StudyHtml(study, options)));
+}
+
+}  // namespace cli

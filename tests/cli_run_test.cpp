@@ -1,0 +1,283 @@
+// `aasim run`, the main job, end to end on a small frame: every output of the set is written and
+// consistent (report.json against counters.csv and quality.csv, EXR layers, the strategies'
+// identical images), anti-aliasing measurably improves on the aliased frame, the report loads in
+// headless Chromium with no console errors and every image decoded, results do not depend on
+// the thread count, and every bad input fails with one stderr line and no output directory.
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "browser_check.h"
+#include "cli/run_options.h"
+#include "cli/study_report.h"
+#include "cli_test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using cli::testing::BadInput;
+using cli::testing::CommandResult;
+using cli::testing::ExpectRefused;
+using cli::testing::ExrChannelNames;
+using cli::testing::ReadText;
+using cli::testing::RunAasim;
+using cli::testing::WriteFile;
+
+constexpr const char* kModes[] = {"1S/1Z/1F", "4S/4Z/4F", "8S/4Z/2F", "16S/8Z/4F"};
+
+std::vector<std::string> SmallRun(const fs::path& scratch, const fs::path& out, const std::string& threads) {
+  return {"run",       "--quick", "--width",   "160",   "--height",         "96",
+          "--gt-samples", "16",   "--threads", threads, "--cache",          (scratch / "cache").string(),
+          "--progress", "never",  "--out",     out.string()};
+}
+
+std::size_t CountLines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+
+// One small run shared by the tests that only read its outputs.
+class CliRunTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scratch_ = new fs::path(fs::temp_directory_path() / ("aasim_cli_run_" + std::to_string(::getpid())));
+    fs::remove_all(*scratch_);
+    fs::create_directories(*scratch_);
+    run_ = new CommandResult(RunAasim(SmallRun(*scratch_, Out(), "2"), *scratch_));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*scratch_);
+    delete scratch_;
+    delete run_;
+  }
+  static fs::path Out() { return *scratch_ / "out"; }
+  static nlohmann::json Report() { return nlohmann::json::parse(ReadText(Out() / "report.json")); }
+
+  static fs::path* scratch_;
+  static CommandResult* run_;
+};
+fs::path* CliRunTest::scratch_ = nullptr;
+CommandResult* CliRunTest::run_ = nullptr;
+
+TEST_F(CliRunTest, SucceedsAndEndsWithTheReportPath) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  const std::string last = "report: " + (Out() / "report.html").string() + "\n";
+  ASSERT_GE(run_->out.size(), last.size());
+  EXPECT_EQ(run_->out.substr(run_->out.size() - last.size()), last) << run_->out;
+  EXPECT_NE(run_->out.find("identical output: yes"), std::string::npos) << run_->out;
+  EXPECT_TRUE(run_->err.empty()) << "--progress never must keep stderr quiet: " << run_->err;
+}
+
+TEST_F(CliRunTest, WritesTheWholeOutputSetWithNamedExrLayers) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  for (const char* file : {"report.html", "report.json", "counters.csv", "quality.csv", "images/ground-truth/colour.png",
+                           "images/ground-truth/edges.png", "images/passes/demo/output.png",
+                           "images/passes/demo/flip.png", "images/passes/demo/stencil/edges.png",
+                           "images/passes/demo/queue/edges.png"}) {
+    EXPECT_TRUE(fs::is_regular_file(Out() / file)) << file;
+  }
+  using Names = std::vector<std::string>;
+  const auto sorted = [](Names names) {
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  EXPECT_EQ(sorted(ExrChannelNames(Out() / "images/ground-truth/ground-truth.exr")),
+            sorted({"R", "G", "B", "coverage", "edge"}));
+  for (const char* slug : {"1s-1z-1f", "4s-4z-4f", "8s-4z-2f", "16s-8z-4f"}) {
+    const fs::path folder = Out() / "images/frames" / slug;
+    const Names frame = ExrChannelNames(folder / "frame.exr");
+    for (const char* layer : {"R", "depth", "normal.X", "objectId", "velocity.Y"}) {
+      EXPECT_NE(std::find(frame.begin(), frame.end(), layer), frame.end()) << slug << " " << layer;
+    }
+    const Names eqaa = ExrChannelNames(folder / "eqaa.exr");
+    EXPECT_NE(std::find(eqaa.begin(), eqaa.end(), "fmask.s0"), eqaa.end()) << slug;
+    EXPECT_EQ(sorted(ExrChannelNames(folder / "error.exr")), sorted({"squared_error", "ssim_error", "flip"})) << slug;
+    for (const char* png : {"colour.png", "fmask.png", "flip.png"}) {
+      EXPECT_TRUE(fs::is_regular_file(folder / png)) << slug << " " << png;
+    }
+  }
+  // No temporary of the all-or-nothing writer is left behind.
+  for (const auto& entry : fs::recursive_directory_iterator(Out())) {
+    EXPECT_EQ(entry.path().filename().string().find(".aasim-tmp-"), std::string::npos) << entry.path();
+  }
+}
+
+TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  const nlohmann::json report = Report();
+  EXPECT_EQ(report["schema"], cli::kReportSchema);
+  EXPECT_EQ(report["version"], 1);
+  EXPECT_EQ(report["configuration"]["width"], 160);
+  ASSERT_EQ(report["frames"].size(), std::size(kModes));
+  for (std::size_t i = 0; i < std::size(kModes); ++i) EXPECT_EQ(report["frames"][i]["mode"], kModes[i]);
+  ASSERT_EQ(report["passes"].size(), 1u);
+  EXPECT_EQ(report["passes"][0]["name"], "demo");
+  EXPECT_EQ(report["passes"][0]["input_frame"], "1S/1Z/1F");
+  EXPECT_TRUE(report["passes"][0]["strategies_identical"].get<bool>());
+  const nlohmann::json& dispatches = report["dispatches"]["dispatches"];
+  // One material draw per mode; the demo pass: 2 dispatches stencil-culled, 3 queued.
+  ASSERT_EQ(dispatches.size(), std::size(kModes) + 5);
+  const std::string counters = ReadText(Out() / "counters.csv");
+  EXPECT_EQ(counters.rfind("frame,name,kind,strategy,", 0), 0u) << counters.substr(0, 80);
+  EXPECT_EQ(CountLines(counters), dispatches.size() + 1);
+  for (std::size_t i = 0; i < std::size(kModes); ++i) {
+    const nlohmann::json& draw = dispatches[report["frames"][i]["draw_dispatch"].get<std::size_t>()];
+    EXPECT_EQ(draw["name"], "frame/material");
+    EXPECT_EQ(draw["frame"], kModes[i]);
+  }
+  const std::string quality = ReadText(Out() / "quality.csv");
+  EXPECT_EQ(CountLines(quality), std::size(kModes) + 2);  // header, modes, the demo pass
+  EXPECT_NE(quality.find("\n16S/8Z/4F,frame,"), std::string::npos) << quality;
+}
+
+// The point of the study: more samples per pixel, closer to the ground truth at the edges.
+TEST_F(CliRunTest, AntiAliasingBeatsTheAliasedFrameAtEdges) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  const nlohmann::json report = Report();
+  const nlohmann::json& aliased = report["frames"][0]["quality"];
+  const nlohmann::json& sixteen = report["frames"][3]["quality"];
+  EXPECT_GT(aliased["edge_pixels"].get<int>(), 100);
+  EXPECT_LT(sixteen["edge_flip"].get<double>(), 0.75 * aliased["edge_flip"].get<double>());
+  EXPECT_GT(sixteen["edge_psnr_db"].get<double>(), aliased["edge_psnr_db"].get<double>() + 3.0);
+  for (const nlohmann::json& frame : report["frames"]) {
+    EXPECT_GT(frame["quality"]["psnr_db"].get<double>(), 20.0) << frame["mode"];
+    EXPECT_GT(frame["quality"]["ssim"].get<double>(), 0.9) << frame["mode"];
+  }
+}
+
+TEST_F(CliRunTest, ReportLoadsInHeadlessChromiumWithEveryImage) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  const std::string html = ReadText(Out() / "report.html");
+  int images = 0;
+  for (std::size_t at = html.find("<figure><img"); at != std::string::npos; at = html.find("<figure><img", at + 1)) ++images;
+  EXPECT_GT(images, 20);
+  const cli::testing::BrowserCheck check = cli::testing::CheckInChromium(Out() / "report.html");
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_TRUE(check.consoleErrors.empty()) << check.consoleErrors.front();
+  EXPECT_TRUE(check.loadErrors.empty()) << check.loadErrors.front();
+  EXPECT_EQ(check.imagesTotal, images);
+  EXPECT_EQ(check.imagesLoaded, images);
+}
+
+TEST_F(CliRunTest, SameCountersQualityAndImagesWithOneThread) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  const fs::path one = *scratch_ / "one-thread";
+  const CommandResult run = RunAasim(SmallRun(*scratch_, one, "1"), *scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  for (const char* file : {"counters.csv", "quality.csv", "images/frames/8s-4z-2f/colour.png",
+                           "images/frames/8s-4z-2f/eqaa.exr", "images/passes/demo/output.png"}) {
+    EXPECT_EQ(ReadText(one / file), ReadText(Out() / file)) << file;
+  }
+  // The second run read the first run's ground truth from the cache.
+  EXPECT_TRUE(nlohmann::json::parse(ReadText(one / "report.json"))["ground_truth"]["cache_hit"].get<bool>());
+  EXPECT_FALSE(Report()["ground_truth"]["cache_hit"].get<bool>());
+}
+
+TEST(CliRun, HelpExplainsEveryOptionAndTheDefaultJob) {
+  const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_run_help_" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  const CommandResult run = RunAasim({"run", "--help"}, scratch);
+  EXPECT_EQ(run.exitCode, 0);
+  for (const char* option : {"--scene", "--width", "--height", "--quick", "--modes", "--pattern", "--policy", "--post",
+                             "--gpu", "--flush", "--gt-samples", "--cache", "--no-cache", "--progress", "--threads",
+                             "--out"}) {
+    EXPECT_NE(run.out.find(option), std::string::npos) << option;
+  }
+  const CommandResult top = RunAasim({"--help"}, scratch);
+  EXPECT_NE(top.out.find("Without a subcommand, aasim runs `aasim run`"), std::string::npos) << top.out;
+  fs::remove_all(scratch);
+}
+
+// The README's first command: `aasim` alone runs the default study (built-in default scene,
+// 1920x1080, 256 rays per pixel) into out/report under the working directory.
+TEST(CliRun, NoArgumentsRunsTheDefaultStudy) {
+  const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_run_default_" + std::to_string(::getpid()));
+  fs::remove_all(scratch);
+  fs::create_directories(scratch);
+  const std::string command = "cd '" + scratch.string() + "' && XDG_CACHE_HOME='" + (scratch / "cache").string() +
+                              "' '" + AASIM_BINARY + "' >stdout.txt 2>stderr.txt";
+  const int status = std::system(command.c_str());
+  const std::string out = ReadText(scratch / "stdout.txt");
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadText(scratch / "stderr.txt");
+  const std::string last = "report: " + (scratch / "out/report/report.html").string() + "\n";
+  ASSERT_GE(out.size(), last.size()) << out;
+  EXPECT_EQ(out.substr(out.size() - last.size()), last) << out;
+  const nlohmann::json report = nlohmann::json::parse(ReadText(scratch / "out/report/report.json"));
+  EXPECT_EQ(report["configuration"]["scene"], "builtin:default");
+  EXPECT_EQ(report["configuration"]["width"], 1920);
+  EXPECT_EQ(report["configuration"]["height"], 1080);
+  EXPECT_EQ(report["ground_truth"]["samples_per_pixel"], 256);
+  EXPECT_EQ(report["frames"].size(), std::size(kModes));
+  EXPECT_TRUE(fs::is_regular_file(scratch / "cache/aasim/ground-truth" /
+                                  fs::path(report["ground_truth"]["cache_file"].get<std::string>()).filename()));
+  fs::remove_all(scratch);
+}
+
+TEST(CliRunModes, ParsesBothSpellingsAndRefusesTheRest) {
+  const std::vector<fmask::EqaaConfig> modes = cli::ParseEqaaModes("8S/4Z/2F,16/8/4,1s/1z/1f");
+  ASSERT_EQ(modes.size(), 3u);
+  EXPECT_EQ(modes[0], (fmask::EqaaConfig{8, 4, 2}));
+  EXPECT_EQ(modes[1], (fmask::EqaaConfig{16, 8, 4}));
+  EXPECT_EQ(modes[2], fmask::kSingleSample);
+  for (const char* bad : {"", "8S/4Z", "8S/4Z/2F/1", "8X/4Z/2F", "8S//2F", "8S/4Z/2F,", "3S/1Z/1F", "8S/4Z/2F,8/4/2"}) {
+    EXPECT_THROW(cli::ParseEqaaModes(bad), CLI::ValidationError) << bad;
+  }
+}
+
+// --- Every bad input: exit code, one stderr line naming the input, no output directory. ---
+
+std::vector<BadInput> BadInputs() {
+  const auto fixed = [](std::vector<std::string> args) {
+    return [args](const fs::path& scratch) {
+      std::vector<std::string> all{"--cache", (scratch / "cache").string()};
+      all.insert(all.end(), args.begin(), args.end());
+      return all;
+    };
+  };
+  return {
+      {"ModeNotAMode", fixed({"--modes", "8S/4Z/2F,banana"}), "--modes", "'banana' is not an EQAA mode", 2},
+      {"ModeIllegal", fixed({"--modes", "4S/4Z/8F"}), "4S/4Z/8F", "1S/1Z/1F (single sample, no FMASK)", 2},
+      {"ModeTwice", fixed({"--modes", "8S/4Z/2F,8/4/2"}), "--modes", "named twice", 2},
+      {"GroundTruthNotSquare", fixed({"--gt-samples", "15"}), "--gt-samples 15", "perfect square", 2},
+      {"UnknownPass", fixed({"--post", "demo,nosuch"}), "--post demo,nosuch", "unknown post pass 'nosuch'", 2},
+      {"CacheAndNoCache", fixed({"--no-cache"}), "--no-cache", "contradict", 2},
+      {"UnknownProgress", fixed({"--progress", "sometimes"}), "--progress", "not in", 2},
+      {"OverMemoryLimit", fixed({"--width", "16384", "--height", "16384"}), "--width 16384", "GiB limit", 2},
+      {"UnknownScene", fixed({"--scene", "builtin:nosuch"}), "builtin:nosuch", "unknown", 1},
+      {"UnknownGpu", fixed({"--gpu", "nosuch"}), "nosuch", "ps4-class", 1},
+      {"UnknownPattern", fixed({"--pattern", "nosuch"}), "nosuch", "unknown sample pattern", 1},
+      {"MalformedGltf",
+       [](const fs::path& scratch) -> std::vector<std::string> {
+         WriteFile(scratch / "broken.gltf", "{ not json");
+         return {"--cache", (scratch / "cache").string(), "--scene", (scratch / "broken.gltf").string()};
+       },
+       "broken.gltf", "", 1},
+      {"OutUnderARegularFile",
+       [](const fs::path& scratch) -> std::vector<std::string> {
+         WriteFile(scratch / "somefile", "x");
+         return {"--cache", (scratch / "cache").string(), "--out", (scratch / "somefile" / "out").string()};
+       },
+       "--out", "cannot create directory: Not a directory", 1},
+  };
+}
+
+class CliRunBadInputTest : public cli::testing::ScratchDirTest, public ::testing::WithParamInterface<BadInput> {};
+
+TEST_P(CliRunBadInputTest, FailsWithOneLineNamingTheInputAndCreatesNothing) {
+  const fs::path out = scratch_ / "out";
+  const CommandResult run = ExpectRefused("run", GetParam(), scratch_, out);
+  EXPECT_FALSE(fs::exists(out)) << run.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "cache")) << "no ground truth is rendered for a refused run";
+}
+
+INSTANTIATE_TEST_SUITE_P(CliRun, CliRunBadInputTest, ::testing::ValuesIn(BadInputs()),
+                         [](const auto& param) { return param.param.name; });
+
+}  // namespace
