@@ -40,12 +40,6 @@ struct PassRun {
   passes::DemoEdgeBlendResult result;
 };
 
-// Where two images first differ, and in how many pixels.
-struct ImageDifference {
-  std::size_t pixels = 0;
-  int x = 0, y = 0;
-};
-
 sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::SamplePattern pattern,
                                 const scenes::Lighting& lighting) {
   sim::FrameSettings settings;
@@ -75,24 +69,6 @@ nlohmann::ordered_json ConfigurationJson(const FrameCommandOptions& options, int
           {"strategy", options.strategy.empty() ? nlohmann::ordered_json(nullptr)
                                                 : nlohmann::ordered_json(options.strategy)},
           {"threads", threads}};
-}
-
-// Bitwise, so -0 against +0 or two NaN payloads count as different: the strategies promise
-// identical bits, not equal values.
-template <typename T>
-std::optional<ImageDifference> Difference(const sim::Texture2D<T>& a, const sim::Texture2D<T>& b) {
-  ImageDifference difference;
-  for (int y = 0; y < a.Height(); ++y) {
-    for (int x = 0; x < a.Width(); ++x) {
-      if (std::memcmp(&a.At(x, y), &b.At(x, y), sizeof(T)) == 0) continue;
-      if (difference.pixels++ == 0) {
-        difference.x = x;
-        difference.y = y;
-      }
-    }
-  }
-  if (difference.pixels == 0) return std::nullopt;
-  return difference;
 }
 
 void WriteImages(OutputDir& dir, const sim::FramePipeline& pipeline,
@@ -143,8 +119,11 @@ void PrintComparison(std::ostream& out, const PassRun& stencil, const PassRun& q
 
 // Both strategies' images, output then edge mask; nullopt when they match bit for bit.
 std::optional<ImageDifference> CompareStrategies(const PassRun& a, const PassRun& b) {
-  if (auto difference = Difference(a.result.output, b.result.output)) return difference;
-  return Difference(a.result.edges, b.result.edges);
+  const ImageDifference output = BitwiseDifference(a.result.output, b.result.output);
+  if (output.pixels > 0) return output;
+  const ImageDifference edges = BitwiseDifference(a.result.edges, b.result.edges);
+  if (edges.pixels > 0) return edges;
+  return std::nullopt;
 }
 
 }  // namespace

@@ -56,22 +56,6 @@ void AddSurfaceOptions(CLI::App& command, FrameCommandOptions& options) {
       ->capture_default_str();
 }
 
-void AddMachineOptions(CLI::App& command, FrameCommandOptions& options) {
-  options.gpu = std::string(sim::kDefaultGpuName);
-  command
-      .add_option("--gpu", options.gpu,
-                  "GPU configuration for occupancy and the timing estimate: a built-in (" +
-                      JoinNames(sim::BuiltinGpuNames()) + ") or a configuration file")
-      ->type_name("NAME|PATH")
-      ->capture_default_str();
-  command
-      .add_option("--flush", options.flush,
-                  "When the pixel-wave packer closes a wave: mix = when 16 quads are in or the "
-                  "bin ends, primitive = also when the primitive changes")
-      ->check(CLI::IsMember(Names(kWaveFlushes)))
-      ->capture_default_str();
-}
-
 void AddPostOptions(CLI::App& command, FrameCommandOptions& options) {
   command
       .add_option("--post", options.post,
@@ -113,6 +97,22 @@ void CheckMemory(const FrameCommandOptions& options) {
 
 }  // namespace
 
+void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush) {
+  gpu = std::string(sim::kDefaultGpuName);
+  command
+      .add_option("--gpu", gpu,
+                  "GPU configuration for occupancy and the timing estimate: a built-in (" +
+                      JoinNames(sim::BuiltinGpuNames()) + ") or a configuration file")
+      ->type_name("NAME|PATH")
+      ->capture_default_str();
+  command
+      .add_option("--flush", flush,
+                  "When the pixel-wave packer closes a wave: mix = when 16 quads are in or the "
+                  "bin ends, primitive = also when the primitive changes")
+      ->check(CLI::IsMember(Names(kWaveFlushes)))
+      ->capture_default_str();
+}
+
 std::vector<passes::Strategy> FrameCommandOptions::Strategies() const {
   if (post == kPostNone) return {};
   std::vector<passes::Strategy> chosen;
@@ -134,7 +134,7 @@ CLI::App* AddFrameCommand(CLI::App& app, FrameCommandOptions& options) {
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   AddViewportOptions(*command, options.scene, options.width, options.height);
   AddSurfaceOptions(*command, options);
-  AddMachineOptions(*command, options);
+  AddMachineOptions(*command, options.gpu, options.flush);
   AddPostOptions(*command, options);
   AddRunOptions(*command, options);
   return command;

@@ -52,4 +52,8 @@ std::uint64_t EstimateFrameBytes(int width, int height, const fmask::EqaaConfig&
 
 sim::WaveFlush WaveFlushByName(std::string_view name);
 
+// --gpu NAME|PATH (default sim::kDefaultGpuName) and --flush mix|primitive (default: what
+// `flush` holds), shared by every command that runs the machine.
+void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush);
+
 }  // namespace cli

@@ -44,8 +44,8 @@ void PrintPass(std::ostream& out, const Study& study, const StudyPass& pass) {
                             all.subspan(b.firstDispatch, b.endDispatch - b.firstDispatch));
   }
   out << "identical output: "
-      << (pass.differingPixels == 0 ? "yes (output and edge mask bit-identical)"
-                                    : "NO, " + std::to_string(pass.differingPixels) + " pixels differ")
+      << (pass.difference.pixels == 0 ? "yes (output and edge mask bit-identical)"
+                                    : "NO, " + std::to_string(pass.difference.pixels) + " pixels differ")
       << '\n';
 }
 
@@ -57,7 +57,10 @@ void PrintSummary(std::ostream& out, const Study& study, const RunCommandOptions
   char header[160];
   std::snprintf(header, sizeof header, "  %-22s %8s %8s %8s %10s\n", "image", "PSNR dB", "SSIM", "FLIP", "edge FLIP");
   out << "quality against the ground truth\n" << header;
-  for (const StudyFrame& frame : study.frames) PrintQuality(out, frame.image);
+  for (const StudyFrame& frame : study.frames) {
+    PrintQuality(out, frame.image);
+    if (frame.fetchResolve) PrintQuality(out, *frame.fetchResolve);
+  }
   for (const StudyPass& pass : study.passes) PrintQuality(out, pass.image);
   for (const StudyPass& pass : study.passes) PrintPass(out, study, pass);
   out << "\nhost time  " << Fixed(study.hostSeconds, 1) << " s (" << study.threads << " threads)\n"
@@ -86,10 +89,10 @@ void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std:
   dir.Commit();
   PrintSummary(summary, study, resolved, dir.Path());
   for (const StudyPass& pass : study.passes) {
-    if (pass.differingPixels == 0) continue;
+    if (pass.difference.pixels == 0) continue;
     throw std::runtime_error("post pass " + pass.name + ": the strategies' outputs differ in " +
-                             std::to_string(pass.differingPixels) + " pixels, first at (" +
-                             std::to_string(pass.firstDifferenceX) + ", " + std::to_string(pass.firstDifferenceY) +
+                             std::to_string(pass.difference.pixels) + " pixels, first at (" +
+                             std::to_string(pass.difference.x) + ", " + std::to_string(pass.difference.y) +
                              "): a bug in passes/ (outputs kept in " + dir.Path().string() + ")");
   }
 }

@@ -11,7 +11,6 @@
 #include "cli/common_options.h"
 #include "cli/frame_options.h"
 #include "cli/post_passes.h"
-#include "sim/gpu_config.h"
 
 namespace cli {
 namespace {
@@ -103,22 +102,6 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
       ->capture_default_str();
 }
 
-void AddMachineOptions(CLI::App& command, RunCommandOptions& options) {
-  options.gpu = std::string(sim::kDefaultGpuName);
-  command
-      .add_option("--gpu", options.gpu,
-                  "GPU configuration for occupancy and the timing estimate: a built-in (" +
-                      JoinNames(sim::BuiltinGpuNames()) + ") or a configuration file")
-      ->type_name("NAME|PATH")
-      ->capture_default_str();
-  command
-      .add_option("--flush", options.flush,
-                  "When the pixel-wave packer closes a wave: mix = when 16 quads are in or the "
-                  "bin ends, primitive = also when the primitive changes")
-      ->check(CLI::IsMember({"mix", "primitive"}))
-      ->capture_default_str();
-}
-
 void AddGroundTruthOptions(CLI::App& command, RunCommandOptions& options) {
   command
       .add_option("--gt-samples", options.groundTruthSamples,
@@ -198,7 +181,7 @@ CLI::App* AddRunCommand(CLI::App& app, RunCommandOptions& options) {
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   AddViewportOptions(*command, options.scene, options.width, options.height);
   AddStudyOptions(*command, options);
-  AddMachineOptions(*command, options);
+  AddMachineOptions(*command, options.gpu, options.flush);
   AddGroundTruthOptions(*command, options);
   AddRunOutputOptions(*command, options);
   return command;

@@ -35,7 +35,7 @@ struct RunCommandOptions {
   std::string modes = std::string(kDefaultModes);
   std::string pattern = "eqaa";
   std::string policy = "hraa";
-  std::string gpu;  // default set by AddRunCommand: sim::kDefaultGpuName
+  std::string gpu;  // default set by AddRunCommand (AddMachineOptions)
   std::string flush = "mix";
   std::string post = "all";
   int groundTruthSamples = 256;

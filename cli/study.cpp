@@ -5,12 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <ostream>
 #include <type_traits>
 
 #include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/parallel_for.h>
 
 #include "cli/frame_options.h"
 #include "cli/post_passes.h"
@@ -102,6 +102,22 @@ passes::QualityResult Score(const sim::Texture2D<glm::vec4>& image, const StudyG
   return result;
 }
 
+sim::Texture2D<glm::vec4> FetchResolve(const fmask::EqaaSurface& surface) {
+  sim::Texture2D<glm::vec4> resolved("fetch resolve", surface.Width(), surface.Height());
+  const int samples = surface.Config().coverageSamples;
+  tbb::parallel_for(0, surface.Height(), [&](int y) {
+    for (int x = 0; x < surface.Width(); ++x) {
+      glm::vec4 sum(0.0f);
+      for (int s = 0; s < samples; ++s) {
+        const fmask::Colour c = surface.FetchSample(x, y, s);
+        sum += glm::vec4(c.r, c.g, c.b, c.a);
+      }
+      resolved.At(x, y) = sum / static_cast<float>(samples);
+    }
+  });
+  return resolved;
+}
+
 sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const RunCommandOptions& options,
                                     std::size_t mode) {
   sim::FrameSettings settings;
@@ -113,20 +129,6 @@ sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const RunCommandO
   settings.flush = WaveFlushByName(options.flush);
   ApplyLighting(inputs.scene.lighting, settings);
   return settings;
-}
-
-// Bitwise: the strategies promise identical bits, not equal values.
-template <typename T>
-void CountDifferences(const sim::Texture2D<T>& a, const sim::Texture2D<T>& b, StudyPass& pass) {
-  for (int y = 0; y < a.Height(); ++y) {
-    for (int x = 0; x < a.Width(); ++x) {
-      if (std::memcmp(&a.At(x, y), &b.At(x, y), sizeof(T)) == 0) continue;
-      if (pass.differingPixels++ == 0) {
-        pass.firstDifferenceX = x;
-        pass.firstDifferenceY = y;
-      }
-    }
-  }
 }
 
 class StudyRunner {
@@ -157,15 +159,19 @@ class StudyRunner {
   void RunMode(std::size_t mode, const FrameCallback& onFrame) {
     const std::string label = fmask::EqaaName(options_.eqaaModes[mode]);
     sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, options_, mode));
-    StudyFrame frame{options_.eqaaModes[mode],
-                     {label, "frames/" + ModeSlug(options_.eqaaModes[mode]), {"frame colour", 1, 1}, {}},
-                     {},
-                     machine_.Reports().size()};
+    StudyFrame frame{.mode = options_.eqaaModes[mode],
+                     .image = {label, "frames/" + ModeSlug(options_.eqaaModes[mode]), {"frame colour", 1, 1}, {}},
+                     .drawDispatch = machine_.Reports().size()};
     log_.Step("frame " + label, [&] { pipeline.Render(inputs_.frame.Geometry()); });
     Tag(label, "");
     frame.image.colour = pipeline.Colour();
     frame.fragments = pipeline.Fragments();
     frame.image.quality = log_.Step("metrics " + label, [&] { return Score(frame.image.colour, study_.groundTruth); });
+    if (frame.mode.fragments < frame.mode.coverageSamples) {
+      ScoredImage fetch{label + " fetch", frame.image.folder + "/fetch", FetchResolve(pipeline.Eqaa()), {}};
+      fetch.quality = log_.Step("metrics " + fetch.label, [&] { return Score(fetch.colour, study_.groundTruth); });
+      frame.fetchResolve = std::move(fetch);
+    }
     if (onFrame) onFrame(frame, pipeline);
     // Post-process AA works on the aliased frame a renderer without MSAA produces: the first mode.
     if (mode == 0) {
@@ -175,12 +181,13 @@ class StudyRunner {
   }
 
   void RunPass(const PostPass& pass, const sim::FramePipeline& pipeline, const std::string& frameLabel) {
-    StudyPass result{std::string(pass.name), std::string(pass.studiedDispatch), frameLabel,
-                     {std::string(pass.name), "passes/" + std::string(pass.name), {"pass output", 1, 1}, {}},
-                     0, {}, 0, 0, 0};
+    StudyPass result{.name = std::string(pass.name),
+                     .studiedDispatch = std::string(pass.studiedDispatch),
+                     .inputFrame = frameLabel,
+                     .image = {std::string(pass.name), "passes/" + std::string(pass.name), {"pass output", 1, 1}, {}}};
     for (const passes::Strategy strategy : pass.strategies) {
       const std::string strategyName(passes::StrategyName(strategy));
-      StudyPassRun run{strategy, machine_.Reports().size(), 0, {"edges", 1, 1}};
+      StudyPassRun run{.strategy = strategy, .firstDispatch = machine_.Reports().size(), .edges = {"edges", 1, 1}};
       PostPassOutput output = log_.Step("pass " + std::string(pass.name) + " [" + strategyName + "]",
                                         [&] { return pass.run(machine_, pipeline, strategy); });
       run.endDispatch = machine_.Reports().size();
@@ -188,9 +195,9 @@ class StudyRunner {
       if (result.runs.empty()) {
         result.image.colour = std::move(output.image);
         result.edgePixels = output.edgePixels;
-      } else {
-        CountDifferences(result.image.colour, output.image, result);
-        CountDifferences(result.runs.front().edges, output.edges, result);
+      } else if (result.difference.pixels == 0) {
+        result.difference = BitwiseDifference(result.image.colour, output.image);
+        if (result.difference.pixels == 0) result.difference = BitwiseDifference(result.runs.front().edges, output.edges);
       }
       run.edges = std::move(output.edges);
       result.runs.push_back(std::move(run));

@@ -8,12 +8,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/vec4.hpp>
 
 #include "cli/frame_input.h"
+#include "cli/frame_output.h"
 #include "cli/run_options.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
@@ -36,8 +38,12 @@ struct ScoredImage {
 
 struct StudyFrame {
   fmask::EqaaConfig mode;
-  ScoredImage image;
-  fmask::FragmentCounters fragments;
+  ScoredImage image;  // the colour block's box resolve (UNKNOWN samples dropped, hw-facts §1.6)
+  // EQAA modes (F < S) only: the shader resolve through the fetch path, the mean of every
+  // sample's FetchSample (UNKNOWN reads fragment 0, hw-facts §1.4). Computed on the host from the
+  // surface, not run as a dispatch.
+  std::optional<ScoredImage> fetchResolve{};
+  fmask::FragmentCounters fragments{};
   std::size_t drawDispatch = 0;  // index into Study::dispatches
 };
 
@@ -53,11 +59,10 @@ struct StudyPass {
   std::string inputFrame;  // label of the frame it post-processed
   ScoredImage image;       // the first strategy's output; the others are bit-identical or flagged
   std::uint64_t edgePixels = 0;
-  std::vector<StudyPassRun> runs;
-  // Pixels where a strategy's output or edge mask differs from the first's (0 = identical), and
-  // the first such pixel.
-  std::uint64_t differingPixels = 0;
-  int firstDifferenceX = 0, firstDifferenceY = 0;
+  std::vector<StudyPassRun> runs{};
+  // Where a strategy's output, else its edge mask, differs from the first strategy's (pixels 0 =
+  // identical).
+  ImageDifference difference{};
 };
 
 struct StudyGroundTruth {

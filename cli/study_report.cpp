@@ -136,6 +136,9 @@ nlohmann::ordered_json FrameJson(const StudyFrame& frame, const RunCommandOption
           {"folder", kImages + frame.image.folder},
           {"draw_dispatch", frame.drawDispatch},
           {"quality", QualityJson(frame.image.quality.scores)},
+          {"fetch_resolve", frame.fetchResolve ? nlohmann::ordered_json{{"folder", kImages + frame.fetchResolve->folder},
+                                                                        {"quality", QualityJson(frame.fetchResolve->quality.scores)}}
+                                               : nlohmann::ordered_json(nullptr)},
           {"fragment_counters", FragmentCountersJson(frame.fragments)}};
 }
 
@@ -151,8 +154,8 @@ nlohmann::ordered_json PassJson(const Study& study, const StudyPass& pass) {
           {"studied_dispatch", pass.studiedDispatch},
           {"folder", kImages + pass.image.folder},
           {"edge_pixels", pass.edgePixels},
-          {"strategies_identical", pass.differingPixels == 0},
-          {"differing_pixels", pass.differingPixels},
+          {"strategies_identical", pass.difference.pixels == 0},
+          {"differing_pixels", pass.difference.pixels},
           {"quality", QualityJson(pass.image.quality.scores)},
           {"strategies", runs}};
 }
@@ -169,7 +172,10 @@ std::string QualityCsv(const Study& study) {
     }
     csv.back() = '\n';
   };
-  for (const StudyFrame& frame : study.frames) row(frame.image, "frame");
+  for (const StudyFrame& frame : study.frames) {
+    row(frame.image, "frame");
+    if (frame.fetchResolve) row(*frame.fetchResolve, "fetch resolve");
+  }
   for (const StudyPass& pass : study.passes) row(pass.image, "pass");
   return csv;
 }
@@ -190,7 +196,10 @@ struct Shown {
 std::vector<Shown> ShownImages(const Study& study, const sim::Texture2D<glm::vec4>& truth) {
   std::vector<Shown> shown{{"ground truth (" + std::to_string(study.groundTruth.image.samplesPerPixel) + " rays/px)",
                             &truth, nullptr}};
-  for (const StudyFrame& frame : study.frames) shown.push_back({frame.image.label, &frame.image.colour, &frame.image});
+  for (const StudyFrame& frame : study.frames) {
+    shown.push_back({frame.image.label, &frame.image.colour, &frame.image});
+    if (frame.fetchResolve) shown.push_back({frame.fetchResolve->label, &frame.fetchResolve->colour, &*frame.fetchResolve});
+  }
   for (const StudyPass& pass : study.passes) {
     shown.push_back({pass.name + " on " + pass.inputFrame, &pass.image.colour, &pass.image});
   }
@@ -223,6 +232,9 @@ ReportSection RunSection(const Study& study, const RunCommandOptions& options) {
 ReportSection ImagesSection(const std::vector<Shown>& shown, int width, int height) {
   const int factor = PreviewFactor(width, kPreviewMaxWidth);
   ReportSection section{"Images", {}, {}, {}, {}};
+  section.paragraphs.push_back(
+      "A mode's image is the colour block's box resolve (UNKNOWN samples dropped); \"fetch\" is the shader "
+      "resolve of an EQAA surface through the fetch path (UNKNOWN samples read fragment 0), computed on the host.");
   section.paragraphs.push_back(factor == 1 ? "Full resolution."
                                            : "Previews averaged over " + std::to_string(factor) + "x" +
                                                  std::to_string(factor) + " pixels; the hardest regions below are "
@@ -381,10 +393,10 @@ ReportSection PassSection(const Study& study, const StudyPass& pass) {
       "(quads run when any pixel passes, 16 quads per wave). Queue: edge pixels appended to a buffer, then an "
       "indirect compute dispatch over exactly that many items.");
   section.paragraphs.push_back(
-      pass.differingPixels == 0
+      pass.difference.pixels == 0
           ? "The strategies' outputs and edge masks are bit-identical."
-          : "The strategies' outputs DIFFER in " + std::to_string(pass.differingPixels) + " pixels, first at (" +
-                std::to_string(pass.firstDifferenceX) + ", " + std::to_string(pass.firstDifferenceY) + "): a bug.");
+          : "The strategies' outputs DIFFER in " + std::to_string(pass.difference.pixels) + " pixels, first at (" +
+                std::to_string(pass.difference.x) + ", " + std::to_string(pass.difference.y) + "): a bug.");
   if (pass.runs.size() == 2) {
     const StudyPassRun &a = pass.runs[0], &b = pass.runs[1];
     std::vector<std::vector<std::string>> rows =
@@ -429,6 +441,10 @@ void StageFrameFiles(OutputDir& dir, const StudyFrame& frame, const sim::FramePi
   WriteEqaaExr(dir.Stage(folder + "eqaa.exr"), planes);
   WritePng(dir.Stage(folder + "fmask.png"), planes.width, planes.height, 3, FmaskImage(planes));
   StageErrorFiles(dir, frame.image);
+  if (frame.fetchResolve) {
+    StageColour(dir, kImages + frame.fetchResolve->folder + "/colour.png", frame.fetchResolve->colour);
+    StageErrorFiles(dir, *frame.fetchResolve);
+  }
 }
 
 nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, int threads) {

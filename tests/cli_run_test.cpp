@@ -133,8 +133,18 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
     EXPECT_EQ(draw["frame"], kModes[i]);
   }
   const std::string quality = ReadText(Out() / "quality.csv");
-  EXPECT_EQ(CountLines(quality), std::size(kModes) + 2);  // header, modes, the demo pass
+  // Header, the modes, the fetch resolves of the two EQAA modes (F < S), the demo pass.
+  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + 2 + 1);
   EXPECT_NE(quality.find("\n16S/8Z/4F,frame,"), std::string::npos) << quality;
+  EXPECT_NE(quality.find("\n8S/4Z/2F fetch,fetch resolve,"), std::string::npos) << quality;
+  for (std::size_t i = 0; i < std::size(kModes); ++i) {
+    const nlohmann::json& frame = report["frames"][i];
+    const bool eqaa = frame["fragments"].get<int>() < frame["samples"].get<int>();
+    EXPECT_EQ(frame["fetch_resolve"].is_null(), !eqaa) << kModes[i];
+    if (eqaa) {
+      EXPECT_TRUE(fs::is_regular_file(Out() / frame["fetch_resolve"]["folder"].get<std::string>() / "error.exr"));
+    }
+  }
 }
 
 // The point of the study: more samples per pixel, closer to the ground truth at the edges.
