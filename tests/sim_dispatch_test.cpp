@@ -8,6 +8,7 @@
 
 #include "raster_test_util.h"
 #include "sim/dispatch.h"
+#include "sim_test_util.h"
 
 namespace sim {
 namespace {
@@ -182,13 +183,8 @@ TEST(SimDispatch, HelperLanesOfASingleTriangleMatchABruteForceCount) {
   const std::vector<std::uint32_t> indices = {0, 1, 2};
   raster::DrawState state;
   state.cull = raster::CullMode::None;
-  raster::DepthSurfaceConfig config;
-  config.width = w;
-  config.height = h;
-  config.coverageSamples = 4;
-  config.depthSamples = 4;
-  const raster::SamplePattern pattern = raster::MakeBuiltinPattern("standard", 4);
-  raster::DepthStencilSurface depth(config, pattern);
+  raster::DepthStencilSurface depth = testing::FourSampleDepth(w, h);
+  const raster::SamplePattern& pattern = depth.Pattern();
   const raster::testing::ReferenceResult ref =
       raster::testing::ReferenceRasterize({clip, indices, 0}, state, pattern, w, h);
   std::uint64_t covered = 0, helpers = 0;

@@ -19,6 +19,7 @@
 
 #include "raster_test_util.h"
 #include "sim/dispatch.h"
+#include "sim_test_util.h"
 
 namespace sim {
 namespace {
@@ -114,12 +115,7 @@ TEST(SimLanes, QuadNeighboursAreClassifiedBeforeAnyLaneRuns) {
   const std::vector<std::uint32_t> indices = {0, 1, 2};
   raster::DrawState state;
   state.cull = raster::CullMode::None;
-  raster::DepthSurfaceConfig config;
-  config.width = w;
-  config.height = h;
-  config.coverageSamples = 4;
-  config.depthSamples = 4;
-  raster::DepthStencilSurface depth(config, raster::MakeBuiltinPattern("standard", 4));
+  raster::DepthStencilSurface depth = testing::FourSampleDepth(w, h);
   Machine machine = TestMachine();
   Dispatch d("test/neighbours", SmallKernel());
   // One slot per pixel: a single triangle's quads never overlap, so bins write disjoint slots.
@@ -250,12 +246,7 @@ TEST(SimLanes, DrawDerivativesOfAnInterpolatedAttributeMatchItsScreenGradient) {
 
   raster::DrawState state;
   state.cull = raster::CullMode::None;
-  raster::DepthSurfaceConfig config;
-  config.width = w;
-  config.height = h;
-  config.coverageSamples = 4;
-  config.depthSamples = 4;
-  raster::DepthStencilSurface depth(config, raster::MakeBuiltinPattern("standard", 4));
+  raster::DepthStencilSurface depth = testing::FourSampleDepth(w, h);
   Machine machine = TestMachine();
   Dispatch d("test/attribute-derivatives", SmallKernel());
   std::vector<float> ddx(static_cast<std::size_t>(w * h), NAN), ddy(ddx.size(), NAN);

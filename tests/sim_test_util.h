@@ -1,13 +1,25 @@
 #pragma once
-// Shared helpers for the machine tests: report comparison for determinism checks.
+// Shared helpers for the machine tests: report comparison for determinism checks, draw targets.
 
 #include <gtest/gtest.h>
 
 #include <span>
 
+#include "raster/depth_stencil.h"
+#include "raster/sample_pattern.h"
 #include "sim/dispatch.h"
 
 namespace sim::testing {
+
+// The single-triangle draws' target: w x h, 4 samples all anchored, the standard pattern.
+inline raster::DepthStencilSurface FourSampleDepth(int w, int h) {
+  raster::DepthSurfaceConfig config;
+  config.width = w;
+  config.height = h;
+  config.coverageSamples = 4;
+  config.depthSamples = 4;
+  return raster::DepthStencilSurface(config, raster::MakeBuiltinPattern("standard", 4));
+}
 
 inline void ExpectSameReports(std::span<const DispatchReport> a, std::span<const DispatchReport> b) {
   ASSERT_EQ(a.size(), b.size());
