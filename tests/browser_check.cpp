@@ -7,13 +7,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <regex>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 namespace cli::testing {
@@ -227,26 +228,81 @@ std::string LastLines(const std::string& text, int count) {
   return text.substr(pos);
 }
 
+// Chromium's log lines start [pid:tid:MMDD/hhmmss.micros:LEVEL:FILE(:LINE|(LINE))]; console
+// messages use the pseudo-file CONSOLE. Scanned by hand rather than with <regex>, whose GCC 12
+// headers trip -Wmaybe-uninitialized in the sanitizer build.
+bool SkipDigits(std::string_view text, std::size_t& at, std::size_t minimum, std::size_t exactly = 0) {
+  const std::size_t start = at;
+  while (at < text.size() && std::isdigit(static_cast<unsigned char>(text[at])) != 0) ++at;
+  const std::size_t count = at - start;
+  return count >= minimum && (exactly == 0 || count == exactly);
+}
+
+bool Expect(std::string_view text, std::size_t& at, char c) {
+  if (at >= text.size() || text[at] != c) return false;
+  ++at;
+  return true;
+}
+
+bool IsLogLine(std::string_view line) {
+  std::size_t at = 0;
+  if (!Expect(line, at, '[') || !SkipDigits(line, at, 1) || !Expect(line, at, ':') || !SkipDigits(line, at, 1) ||
+      !Expect(line, at, ':') || !SkipDigits(line, at, 4, 4) || !Expect(line, at, '/') ||
+      !SkipDigits(line, at, 6, 6) || !Expect(line, at, '.') || !SkipDigits(line, at, 1) || !Expect(line, at, ':')) {
+    return false;
+  }
+  const std::size_t level = at;
+  while (at < line.size() && (std::isupper(static_cast<unsigned char>(line[at])) != 0 ||
+                              std::isdigit(static_cast<unsigned char>(line[at])) != 0 || line[at] == '_')) {
+    ++at;
+  }
+  return at > level && Expect(line, at, ':');
+}
+
+// The text after "[...:CONSOLE:N] " or "[...:CONSOLE(N)] ".
+bool ConsoleText(std::string_view line, std::string& text) {
+  const std::size_t close = line.find(']');
+  if (line.empty() || line[0] != '[' || close == std::string_view::npos || close + 1 >= line.size() ||
+      line[close + 1] != ' ') {
+    return false;
+  }
+  const std::string_view prefix = line.substr(1, close - 1);
+  if (prefix.find(' ') != std::string_view::npos) return false;
+  const std::size_t console = prefix.rfind(":CONSOLE");
+  if (console == std::string_view::npos) return false;
+  std::size_t at = console + 8;
+  const bool colonForm = Expect(prefix, at, ':') && SkipDigits(prefix, at, 1) && at == prefix.size();
+  at = console + 8;
+  const bool parenForm =
+      Expect(prefix, at, '(') && SkipDigits(prefix, at, 1) && Expect(prefix, at, ')') && at == prefix.size();
+  if (!colonForm && !parenForm) return false;
+  text = std::string(line.substr(close + 2));
+  return true;
+}
+
+// A console message ends with `", source: URL (LINE)`.
+bool EndsConsoleMessage(std::string_view text) {
+  if (text.find("\", source: ") == std::string_view::npos || text.empty() || text.back() != ')') return false;
+  const std::size_t open = text.rfind(" (");
+  if (open == std::string_view::npos) return false;
+  std::size_t at = open + 2;
+  return SkipDigits(text, at, 1) && at == text.size() - 1;
+}
+
 }  // namespace
 
 std::vector<std::string> ConsoleMessagesInLog(const std::string& log) {
-  // Chromium's log prefix is [pid:tid:MMDD/hhmmss.micros:LEVEL:FILE(:|()LINE)]; console messages
-  // use the pseudo-file CONSOLE.
-  static const std::regex kAnyLogLine(R"(^\[\d+:\d+:\d{4}/\d{6}\.\d+:[A-Z0-9_]+:)");
-  static const std::regex kConsole(R"(^\[[^\] ]*:CONSOLE(?::\d+|\(\d+\))\] (.*)$)");
-  static const std::regex kEnd(R"(", source: .* \(\d+\)$)");
   std::vector<std::string> messages;
   std::string current;
   bool open = false;
   std::istringstream lines(log);
   std::string line;
-  std::smatch match;
   while (std::getline(lines, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (open && !std::regex_search(line, kAnyLogLine)) {
+    if (open && !IsLogLine(line)) {
       current += '\n';
       current += line;
-      if (std::regex_search(line, kEnd)) {
+      if (EndsConsoleMessage(line)) {
         messages.push_back(current);
         open = false;
       }
@@ -256,9 +312,8 @@ std::vector<std::string> ConsoleMessagesInLog(const std::string& log) {
       messages.push_back(current);
       open = false;
     }
-    if (std::regex_match(line, match, kConsole)) {
-      current = match[1].str();
-      if (std::regex_search(current, kEnd)) {
+    if (ConsoleText(line, current)) {
+      if (EndsConsoleMessage(current)) {
         messages.push_back(current);
       } else {
         open = true;
