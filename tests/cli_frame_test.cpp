@@ -557,6 +557,34 @@ TEST(CliFrameInput, ObjectIdsAreMeshIndicesAndColoursComeFromThePalette) {
   EXPECT_EQ(geometry.indices.size(), 9u);
 }
 
+// A textured material reaches the material kernel as its factor plus the texture, so the frame
+// shades what scenes::BaseColour (and the ground truth) does; untextured meshes keep their colour.
+TEST(CliFrameInput, TexturedMaterialsCarryFactorTextureAndTexcoords) {
+  scenes::Scene scene;
+  scene.name = "textured";
+  scene.textures = {{.name = "checks", .width = 2, .height = 1, .texels = {glm::vec4(1.0f), glm::vec4(0.0f)}}};
+  scene.materials = {{.name = "textured", .baseColourFactor = {0.5f, 0.25f, 1.0f, 1.0f}, .baseColourTexture = 0},
+                     {.name = "plain", .baseColourFactor = {0.2f, 0.4f, 0.6f, 1.0f}, .baseColourTexture = -1}};
+  scenes::Mesh textured{.name = "t", .positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, .normals = {},
+                        .texcoords = {{0, 0}, {1, 0}, {0, 1}}, .indices = {0, 1, 2}, .material = 0};
+  scenes::Mesh plain{.name = "p", .positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, .normals = {},
+                     .texcoords = {}, .indices = {0, 1, 2}, .material = 1};
+  scene.meshes = {textured, plain};
+  const cli::FrameScene frame = cli::ToFrameScene(scene, 1.0f);
+  EXPECT_EQ(frame.baseColours, (std::vector<glm::vec3>{{0.5f, 0.25f, 1.0f}, {0.2f, 0.4f, 0.6f}}));
+  EXPECT_EQ(frame.baseColourTextures, (std::vector<int>{0, -1}));
+  ASSERT_EQ(frame.textures.size(), 1u);
+  EXPECT_EQ(frame.textures[0].Width(), 2);
+  EXPECT_EQ(frame.textures[0].At(1, 0), glm::vec4(0.0f));
+  EXPECT_EQ(frame.textures[0].TexelBytes(), 4);  // modelled as RGBA8
+  // Every vertex has texcoords once any mesh is textured; the plain mesh's are never read.
+  ASSERT_EQ(frame.texcoords.size(), 6u);
+  EXPECT_EQ(frame.texcoords[1], glm::vec2(1, 0));
+  const sim::FrameGeometry geometry = frame.Geometry();
+  EXPECT_EQ(geometry.textures.size(), 1u);
+  EXPECT_EQ(geometry.baseColourTextures.size(), 2u);
+}
+
 TEST(CliFrameOptions, EveryStrategyCountsInTheMemoryEstimate) {
   const fmask::EqaaConfig eqaa{8, 4, 2};
   EXPECT_LT(cli::EstimateFrameBytes(64, 48, eqaa, 1), cli::EstimateFrameBytes(64, 48, eqaa, 2));
