@@ -201,18 +201,5 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   app.add_option("--json", options.json, "Also write the results as JSON to FILE")->type_name("FILE");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& help) {
-    return app.exit(help);
-  } catch (const CLI::ParseError& error) {
-    std::cerr << "aasim_frame_bench: " << error.what() << '\n';
-    return 2;
-  }
-  try {
-    return RunBench(options);
-  } catch (const std::exception& error) {
-    std::cerr << "aasim_frame_bench: " << error.what() << '\n';
-    return 1;
-  }
+  return bench::ParseAndRun(app, argc, argv, [&] { return RunBench(options); });
 }
