@@ -1,6 +1,9 @@
-// glTF 2.0 import: tinygltf parses the file, this module validates every accessor it touches,
-// flattens the scene's node tree into world-space triangle lists with their base colour materials
-// and sRGB-decoded textures, and picks the file's camera. Any defect is a SceneError.
+// glTF 2.0 import (see gltf_loader.h): the container, JSON, schema and resources are checked by
+// the stages in glb_container.h, gltf_schema.h and gltf_resources.h; then tinygltf builds its
+// model from the checked document, with every URI served from bytes already read, and this
+// module validates every accessor it touches, flattens the scene's node tree into world-space
+// triangle lists with their base colour materials and sRGB-decoded textures, and picks the
+// file's camera. Any defect is a SceneError.
 
 #include <algorithm>
 #include <array>
@@ -8,14 +11,10 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iostream>
 #include <limits>
 #include <map>
-#include <numbers>
 #include <numeric>
 #include <optional>
-#include <set>
 #include <span>
 #include <sstream>
 #include <string>
@@ -29,6 +28,11 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "scenes/glb_container.h"
+#include "scenes/gltf_loader.h"
+#include "scenes/gltf_messages.h"
+#include "scenes/gltf_resources.h"
+#include "scenes/gltf_schema.h"
 #include "scenes/scene.h"
 #include "scenes/texture.h"
 
@@ -52,10 +56,6 @@ constexpr std::string_view kDracoUnsupported =
     "requires KHR_draco_mesh_compression (Draco-compressed meshes), which aasim does not "
     "support; re-export the file without Draco compression";
 
-// GLB header: magic, version, total length; then the JSON chunk's length and type.
-constexpr std::size_t kGlbJsonStart = 20;
-constexpr std::uint32_t kGlbJsonChunkType = 0x4E4F534Au;  // "JSON"
-
 struct SkippedKind {
   std::string_view name;
   std::size_t count = 0;
@@ -76,14 +76,14 @@ std::string OneLine(const std::string& text) {
     if (!joined.empty()) joined += "; ";
     joined += line;
   }
-  return joined;
+  return gltf::Excerpt(joined, 4 * gltf::kExcerptBytes);
 }
 
-void PrintWarnings(const std::filesystem::path& path, const std::string& text) {
+void PrintWarnings(gltf::WarningLog& warnings, const std::string& text) {
   std::istringstream lines(text);
   for (std::string line; std::getline(lines, line);) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::cerr << path.string() << ": warning: " << line << '\n';
+    warnings.Warn(gltf::Excerpt(line, 4 * gltf::kExcerptBytes));
   }
 }
 
@@ -124,35 +124,11 @@ std::string TypeName(int type) {
 std::string MeshLabel(const tinygltf::Mesh& mesh, int index) {
   std::string label = "mesh ";
   if (mesh.name.empty()) return label.append(std::to_string(index));
-  return label.append("'").append(mesh.name).append("'");
+  return label.append(gltf::Quoted(mesh.name));
 }
 
 bool IsFinite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool IsAppearanceExtension(const std::string& name) {
-  return std::any_of(kAppearancePrefixes.begin(), kAppearancePrefixes.end(),
-                     [&](std::string_view prefix) { return name.starts_with(prefix); });
-}
-
-// Only base colour images are ever drawn, so decoding waits until a material needs one: here
-// the encoded bytes of a uri image (a file or data URI, read by tinygltf into a buffer of exactly
-// `size` bytes) are kept as they are. A bufferView image is left alone because tinygltf does not
-// check that view against its buffer; the flattener reads it through its own checks.
-bool KeepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                      const unsigned char* bytes, int size, void*) {
-  if (image->bufferView >= 0 || size <= 0) return true;
-  image->image.assign(bytes, bytes + size);
-  image->as_is = true;
-  return true;
-}
-
-bool IsPngOrJpeg(const tinygltf::Image& image) {
-  if (image.mimeType == "image/png" || image.mimeType == "image/jpeg") return true;
-  const std::string extension = Lowercase(std::filesystem::path(image.uri).extension().string());
-  return !image.uri.starts_with("data:") &&
-         (extension == ".png" || extension == ".jpg" || extension == ".jpeg");
 }
 
 std::string FormatNumber(double value) {
@@ -161,9 +137,45 @@ std::string FormatNumber(double value) {
   return text.str();
 }
 
+// False for non-finite coordinates too.
+bool WithinCoordinateBound(const glm::dvec3& p) {
+  return std::abs(p.x) <= kMaxGltfCoordinate && std::abs(p.y) <= kMaxGltfCoordinate &&
+         std::abs(p.z) <= kMaxGltfCoordinate;
+}
+
+std::string CoordinateBoundText() {
+  return "outside the +-" + FormatNumber(kMaxGltfCoordinate) +
+         " aasim accepts for world coordinates (docs/scenes.md)";
+}
+
+bool IsAppearanceExtension(const std::string& name) {
+  return std::any_of(kAppearancePrefixes.begin(), kAppearancePrefixes.end(),
+                     [&](std::string_view prefix) { return name.starts_with(prefix); });
+}
+
+// Only base colour images are ever drawn, so decoding waits until a material needs one: here
+// the encoded bytes of a uri image (served by Serve, `size` bytes) are kept as they
+// are. A bufferView image is left alone: the flattener reads it through its own checks.
+bool KeepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView >= 0 || size <= 0) return true;
+  image->image.assign(bytes, bytes + size);
+  image->as_is = true;
+  return true;
+}
+
+// Decoding failures of images that claim to be PNG or JPEG are errors; other formats (KTX2,
+// WebP, ...) are dropped with a warning.
+bool IsPngOrJpeg(std::span<const unsigned char> bytes, const gltf::ImageOrigin& origin) {
+  if (SniffImageFormat(bytes) != ImageFormat::Other) return true;
+  if (origin.mediaType == "image/png" || origin.mediaType == "image/jpeg") return true;
+  const std::string extension = Lowercase(std::filesystem::path(origin.uri).extension().string());
+  return extension == ".png" || extension == ".jpg" || extension == ".jpeg";
+}
+
 // One warning per extension the file uses: each says what aasim draws instead.
 std::string IgnoredExtensionMessage(const std::string& name) {
-  std::string text = "extension " + name + " is ignored";
+  std::string text = "extension " + gltf::Excerpt(name) + " is ignored";
   if (name == "KHR_texture_transform") return text + ": texture coordinates are used untransformed";
   if (name == "KHR_lights_punctual") {
     return text + ": aasim lights every scene with its own directional light";
@@ -202,14 +214,17 @@ struct CameraInstance {
   glm::dmat4 world;
 };
 
+// Works on a model whose document passed ValidateGltfSchema: every index it follows exists, every
+// array has its schema length, every number its schema range; the checks here are those the
+// schema cannot express.
 class GltfFlattener {
  public:
-  GltfFlattener(const std::filesystem::path& path, const tinygltf::Model& model)
-      : path_(path), model_(model) {}
+  GltfFlattener(const std::string& file, const tinygltf::Model& model,
+                const std::vector<gltf::ImageOrigin>& imageOrigins, gltf::WarningLog& warnings)
+      : file_(file), model_(model), imageOrigins_(imageOrigins), warnings_(warnings) {}
 
   // Everything but the scene's name.
   Scene Flatten(float aspect) {
-    CheckRequiredExtensions();
     WarnUnmodelledFileFeatures();
     for (int root : RootNodes()) WalkFrom(root);
     WarnSkipped();
@@ -234,13 +249,11 @@ class GltfFlattener {
   };
 
   [[noreturn]] void Fail(const std::string& problem) const {
-    throw SceneError(path_.string() + ": " + problem);
+    throw SceneError(file_ + ": " + problem);
   }
 
   // Each distinct text is printed once per file, however many elements it concerns.
-  void Warn(const std::string& text) {
-    if (warned_.insert(text).second) std::cerr << path_.string() << ": warning: " << text << '\n';
-  }
+  void Warn(const std::string& text) { warnings_.Warn(text); }
 
   void WarnUnmodelledFileFeatures() {
     for (const std::string& name : model_.extensionsUsed) Warn(IgnoredExtensionMessage(name));
@@ -254,22 +267,9 @@ class GltfFlattener {
     }
   }
 
-  void CheckRequiredExtensions() const {
-    for (const std::string& name : model_.extensionsRequired) {
-      if (name == kDracoExtension) Fail(std::string(kDracoUnsupported));
-      if (!IsAppearanceExtension(name)) {
-        Fail("requires extension " + name + ", which aasim does not support");
-      }
-    }
-  }
-
   std::vector<int> RootNodes() const {
     if (model_.defaultScene >= 0) {
-      if (static_cast<std::size_t>(model_.defaultScene) >= model_.scenes.size()) {
-        Fail("default scene " + std::to_string(model_.defaultScene) + " does not exist (" +
-             std::to_string(model_.scenes.size()) + " scenes)");
-      }
-      return model_.scenes[static_cast<std::size_t>(model_.defaultScene)].nodes;
+      return model_.scenes.at(static_cast<std::size_t>(model_.defaultScene)).nodes;
     }
     if (!model_.scenes.empty()) return model_.scenes.front().nodes;
     return ParentlessNodes();
@@ -279,11 +279,7 @@ class GltfFlattener {
   std::vector<int> ParentlessNodes() const {
     std::vector<bool> isChild(model_.nodes.size(), false);
     for (const tinygltf::Node& node : model_.nodes) {
-      for (int child : node.children) {
-        if (child >= 0 && static_cast<std::size_t>(child) < isChild.size()) {
-          isChild[static_cast<std::size_t>(child)] = true;
-        }
-      }
+      for (int child : node.children) isChild.at(static_cast<std::size_t>(child)) = true;
     }
     std::vector<int> roots;
     for (std::size_t i = 0; i < isChild.size(); ++i) {
@@ -319,7 +315,7 @@ class GltfFlattener {
       Fail("node graph expands to more than " + std::to_string(kMaxNodeInstances) +
            " node instances");
     }
-    const glm::dmat4 world = parentWorld * LocalTransform(node, nodeIndex);
+    const glm::dmat4 world = parentWorld * LocalTransform(node);
     if (node.mesh >= 0) AddMeshInstance(node.mesh, world);
     if (node.camera >= 0) NoteCamera(node.camera, nodeIndex, world);
     onPath[static_cast<std::size_t>(nodeIndex)] = true;
@@ -334,68 +330,31 @@ class GltfFlattener {
   }
 
   const tinygltf::Node& Node(int index) const {
-    if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size()) {
-      Fail("node " + std::to_string(index) + " does not exist (" +
-           std::to_string(model_.nodes.size()) + " nodes)");
-    }
-    return model_.nodes[static_cast<std::size_t>(index)];
+    return model_.nodes.at(static_cast<std::size_t>(index));
   }
 
-  glm::dmat4 LocalTransform(const tinygltf::Node& node, int index) const {
-    const std::string where = "node " + std::to_string(index);
-    glm::dmat4 local(1.0);
-    if (!node.matrix.empty()) {
-      ExpectSize(node.matrix, 16, where + " matrix");
-      local = glm::make_mat4(node.matrix.data());  // both column-major
-    } else {
-      local = TranslationRotationScale(node, where);
-    }
-    for (int column = 0; column < 4; ++column) {
-      for (int row = 0; row < 4; ++row) {
-        if (!std::isfinite(local[column][row])) Fail(where + " has a non-finite transform");
-      }
-    }
-    return local;
-  }
-
-  glm::dmat4 TranslationRotationScale(const tinygltf::Node& node, const std::string& where) const {
+  // The schema bounds every value, so the local transform is finite; world transforms may still
+  // overflow down a long chain, which the position and camera checks catch.
+  static glm::dmat4 LocalTransform(const tinygltf::Node& node) {
+    if (!node.matrix.empty()) return glm::make_mat4(node.matrix.data());  // both column-major
     glm::dmat4 local(1.0);
     if (!node.translation.empty()) {
-      ExpectSize(node.translation, 3, where + " translation");
       local = glm::translate(local, glm::make_vec3(node.translation.data()));
     }
     if (!node.rotation.empty()) {
-      ExpectSize(node.rotation, 4, where + " rotation");
       const std::vector<double>& r = node.rotation;  // glTF order: x, y, z, w
-      glm::dquat rotation(r[3], r[0], r[1], r[2]);
-      const double length = glm::length(rotation);
-      if (!(length > 0.0)) Fail(where + " rotation is not a valid quaternion");
+      const glm::dquat rotation(r[3], r[0], r[1], r[2]);
       // Exporters write unit quaternions rounded to float; renormalising removes the tiny
-      // scale that rounding would otherwise add.
-      local *= glm::mat4_cast(rotation / length);
+      // scale that rounding would otherwise add (the schema check bounds it).
+      local *= glm::mat4_cast(rotation / glm::length(rotation));
     }
-    if (!node.scale.empty()) {
-      ExpectSize(node.scale, 3, where + " scale");
-      local = glm::scale(local, glm::make_vec3(node.scale.data()));
-    }
+    if (!node.scale.empty()) local = glm::scale(local, glm::make_vec3(node.scale.data()));
     return local;
   }
 
-  void ExpectSize(const std::vector<double>& values, std::size_t size,
-                  const std::string& what) const {
-    if (values.size() != size) {
-      Fail(what + " has " + std::to_string(values.size()) + " numbers, expected " +
-           std::to_string(size));
-    }
-  }
-
   void AddMeshInstance(int meshIndex, const glm::dmat4& world) {
-    if (static_cast<std::size_t>(meshIndex) >= model_.meshes.size()) {
-      Fail("mesh " + std::to_string(meshIndex) + " does not exist (" +
-           std::to_string(model_.meshes.size()) + " meshes)");
-    }
     ++meshInstances_;
-    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
+    const tinygltf::Mesh& mesh = model_.meshes.at(static_cast<std::size_t>(meshIndex));
     const std::string label = MeshLabel(mesh, meshIndex);
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const std::string where = label + " primitive " + std::to_string(p);
@@ -425,6 +384,7 @@ class GltfFlattener {
     if (!IsTriangleMode(primitive.mode, where)) return;
     const auto positionIt = primitive.attributes.find("POSITION");
     if (positionIt == primitive.attributes.end()) Fail(where + ": has no POSITION attribute");
+    ReserveSceneSize(primitive, positionIt->second, where);
     Mesh mesh;
     mesh.name = std::move(name);
     mesh.positions = ReadVec3(positionIt->second, {"POSITION", TINYGLTF_TYPE_VEC3}, where);
@@ -433,20 +393,12 @@ class GltfFlattener {
     if (normalIt != primitive.attributes.end()) {
       mesh.normals = ReadVec3(normalIt->second, {"NORMAL", TINYGLTF_TYPE_VEC3}, where);
       CheckFinite(mesh.normals, "normal", where);
-      if (mesh.normals.size() != mesh.positions.size()) {
-        Fail(where + ": " + std::to_string(mesh.normals.size()) + " normals for " +
-             std::to_string(mesh.positions.size()) + " positions");
-      }
     }
     const auto texcoordIt = primitive.attributes.find("TEXCOORD_0");
     if (texcoordIt != primitive.attributes.end()) {
       mesh.texcoords = ReadTexcoords(texcoordIt->second, where);
-      if (mesh.texcoords.size() != mesh.positions.size()) {
-        Fail(where + ": " + std::to_string(mesh.texcoords.size()) + " texture coordinates for " +
-             std::to_string(mesh.positions.size()) + " positions");
-      }
     }
-    mesh.material = SceneMaterial(primitive.material, !mesh.texcoords.empty(), where);
+    mesh.material = SceneMaterial(primitive.material, !mesh.texcoords.empty());
     if (!primitive.targets.empty()) {
       Warn("morph targets are ignored: meshes are drawn in their base shape");
     }
@@ -461,17 +413,39 @@ class GltfFlattener {
     meshes_.push_back(std::move(mesh));
   }
 
+  // Checked before anything of the primitive is read, as instancing may repeat one mesh
+  // kMaxNodeInstances times: the attributes agree in count, and the scene stays within its
+  // vertex and index budget.
+  void ReserveSceneSize(const tinygltf::Primitive& primitive, int position,
+                        const std::string& where) {
+    const std::size_t vertices = Accessor(position).count;
+    for (const auto& [role, noun] : {std::pair{"NORMAL", "normals"},
+                                     std::pair{"TEXCOORD_0", "texture coordinates"}}) {
+      const auto it = primitive.attributes.find(role);
+      if (it != primitive.attributes.end() && Accessor(it->second).count != vertices) {
+        Fail(where + ": " + std::to_string(Accessor(it->second).count) + " " + noun + " for " +
+             std::to_string(vertices) + " positions");
+      }
+    }
+    const std::size_t listed =
+        primitive.indices >= 0 ? Accessor(primitive.indices).count : vertices;
+    sceneVertices_ += vertices;
+    sceneIndices_ += primitive.mode == TINYGLTF_MODE_TRIANGLES ? listed : 3 * listed;
+    if (sceneVertices_ > kMaxGltfSceneVertices || sceneIndices_ > kMaxGltfSceneIndices) {
+      Fail(where + ": with its " + std::to_string(vertices) + " vertices and " +
+           std::to_string(listed) + " indices the scene's mesh instances exceed " +
+           std::to_string(kMaxGltfSceneVertices) + " vertices or " +
+           std::to_string(kMaxGltfSceneIndices) + " triangle-list indices, the most aasim loads");
+    }
+  }
+
   // --- Materials and textures -----------------------------------------------------------------
 
   // The Scene::materials index for a primitive's glTF material (-1 stays -1). A textured
   // material on a primitive without TEXCOORD_0 becomes an untextured copy: there is nothing to
   // sample the texture with.
-  int SceneMaterial(int index, bool hasTexcoords, const std::string& where) {
+  int SceneMaterial(int index, bool hasTexcoords) {
     if (index < 0) return -1;
-    if (static_cast<std::size_t>(index) >= model_.materials.size()) {
-      Fail(where + ": material " + std::to_string(index) + " does not exist (" +
-           std::to_string(model_.materials.size()) + " materials)");
-    }
     const auto [it, inserted] = materialIndex_.try_emplace(index, -1);
     if (inserted) it->second = AddMaterial(index);
     const int converted = it->second;
@@ -492,24 +466,14 @@ class GltfFlattener {
   }
 
   int AddMaterial(int index) {
-    const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(index)];
-    std::string where = "material ";
-    if (source.name.empty()) {
-      where.append(std::to_string(index));
-    } else {
-      where.append("'").append(source.name).append("'");
-    }
+    const tinygltf::Material& source = model_.materials.at(static_cast<std::size_t>(index));
     const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
-    ExpectSize(factor, 4, where + " baseColorFactor");
-    if (!std::all_of(factor.begin(), factor.end(), [](double v) { return std::isfinite(v); })) {
-      Fail(where + ": baseColorFactor has a non-finite component");
-    }
     WarnUnmodelledMaps(source);
     Material material;
-    material.name = source.name.empty() ? where : source.name;
-    material.baseColourFactor = glm::vec4(glm::dvec4(factor[0], factor[1], factor[2], factor[3]));
-    material.baseColourTexture =
-        BaseColourTexture(source.pbrMetallicRoughness.baseColorTexture, where);
+    material.name = source.name.empty() ? "material " + std::to_string(index) : source.name;
+    material.baseColourFactor = glm::vec4(glm::dvec4(factor.at(0), factor.at(1), factor.at(2),
+                                                     factor.at(3)));
+    material.baseColourTexture = BaseColourTexture(source.pbrMetallicRoughness.baseColorTexture);
     materials_.push_back(std::move(material));
     return static_cast<int>(materials_.size()) - 1;
   }
@@ -530,33 +494,24 @@ class GltfFlattener {
     }
   }
 
-  int BaseColourTexture(const tinygltf::TextureInfo& info, const std::string& where) {
+  int BaseColourTexture(const tinygltf::TextureInfo& info) {
     if (info.index < 0) return -1;
     if (info.texCoord != 0) {
       Warn("base colour textures on TEXCOORD_" + std::to_string(info.texCoord) +
            " are not supported (TEXCOORD_0 only): their materials use the base colour factor");
       return -1;
     }
-    if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
-      Fail(where + ": baseColorTexture refers to texture " + std::to_string(info.index) +
-           ", which does not exist (" + std::to_string(model_.textures.size()) + " textures)");
-    }
-    const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
-    const std::string textureName = "texture " + std::to_string(info.index);
-    CheckSampler(texture.sampler, textureName);
+    const tinygltf::Texture& texture = model_.textures.at(static_cast<std::size_t>(info.index));
+    WarnUnmodelledSampler(texture.sampler);
     if (texture.source < 0) {
       Warn("textures without a PNG or JPEG source image are dropped: their materials use the "
            "base colour factor");
       return -1;
     }
-    if (static_cast<std::size_t>(texture.source) >= model_.images.size()) {
-      Fail(textureName + " refers to image " + std::to_string(texture.source) +
-           ", which does not exist (" + std::to_string(model_.images.size()) + " images)");
-    }
     // Textures differ from their image only by the sampler, which aasim does not model.
     const auto [it, inserted] = imageTexture_.try_emplace(texture.source, -1);
     if (inserted) {
-      std::optional<Texture> decoded = DecodeImage(texture.source);
+      std::optional<Texture> decoded = TextureFromImage(texture.source);
       if (decoded) {
         textures_.push_back(std::move(*decoded));
         it->second = static_cast<int>(textures_.size()) - 1;
@@ -565,13 +520,9 @@ class GltfFlattener {
     return it->second;
   }
 
-  void CheckSampler(int index, const std::string& textureName) {
+  void WarnUnmodelledSampler(int index) {
     if (index < 0) return;
-    if (static_cast<std::size_t>(index) >= model_.samplers.size()) {
-      Fail(textureName + " refers to sampler " + std::to_string(index) +
-           ", which does not exist (" + std::to_string(model_.samplers.size()) + " samplers)");
-    }
-    const tinygltf::Sampler& sampler = model_.samplers[static_cast<std::size_t>(index)];
+    const tinygltf::Sampler& sampler = model_.samplers.at(static_cast<std::size_t>(index));
     if (sampler.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT ||
         sampler.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT) {
       Warn("texture wrap modes other than REPEAT are sampled as REPEAT");
@@ -585,70 +536,51 @@ class GltfFlattener {
     }
   }
 
-  // nullopt (with a warning) for a format stb_image cannot decode; a PNG or JPEG that fails to
-  // decode, or an image file that could not be read, is an error.
-  std::optional<Texture> DecodeImage(int index) {
-    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
-    const bool external = !image.uri.empty() && !image.uri.starts_with("data:");
+  // nullopt (with a warning) for an image that is not PNG or JPEG; a PNG or JPEG that fails to
+  // decode, or is too large, is an error.
+  std::optional<Texture> TextureFromImage(int index) {
+    const tinygltf::Image& image = model_.images.at(static_cast<std::size_t>(index));
+    const gltf::ImageOrigin& origin = imageOrigins_.at(static_cast<std::size_t>(index));
     std::string name = !image.name.empty() ? image.name
-                       : external          ? image.uri
-                                           : "image " + std::to_string(index);
+                       : !origin.uri.empty() ? origin.uri
+                                             : "image " + std::to_string(index);
     std::string where = "image " + std::to_string(index);
-    if (!image.name.empty() || external) where.append(" '").append(name).append("'");
+    if (!image.name.empty() || !origin.uri.empty()) where.append(" ").append(gltf::Quoted(name));
     const std::span<const unsigned char> encoded = EncodedImage(image, where);
-    if (encoded.empty()) {
-      Fail(where + (external ? ": cannot read the image file" : ": has no image data"));
-    }
-    if (encoded.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
-      Fail(where + ": " + std::to_string(encoded.size()) + " bytes is too large to decode");
-    }
-    tinygltf::Image decoded;
-    std::string errors;
-    std::string warnings;
-    if (!tinygltf::LoadImageData(&decoded, index, &errors, &warnings, 0, 0, encoded.data(),
-                                 static_cast<int>(encoded.size()), nullptr)) {
-      if (IsPngOrJpeg(image)) Fail(where + ": cannot decode: " + OneLine(errors));
+    if (!IsPngOrJpeg(encoded, origin)) {
       Warn("images that are not PNG or JPEG are dropped (first: " + where +
            "): their materials use the base colour factor");
       return std::nullopt;
     }
-    try {
-      return DecodeTexels(std::move(name), decoded.width, decoded.height, decoded.component,
-                          decoded.bits, decoded.image, ColourEncoding::Srgb);
-    } catch (const SceneError& e) {
-      Fail(where + ": " + e.what());
+    const std::string prefix = file_ + ": " + where;
+    const ImageSize size = ReadImageSize(encoded, prefix);
+    sceneTexels_ += static_cast<std::size_t>(size.width) * static_cast<std::size_t>(size.height);
+    if (sceneTexels_ > kMaxGltfSceneTexels) {
+      Fail(where + ": its " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+           " texels bring the scene's textures past the " + std::to_string(kMaxGltfSceneTexels) +
+           " texels aasim decodes per scene");
     }
+    Texture texture = DecodeImage(encoded, prefix, ColourEncoding::Srgb);
+    texture.name = std::move(name);
+    return texture;
   }
 
   std::span<const unsigned char> EncodedImage(const tinygltf::Image& image,
                                               const std::string& where) const {
     if (image.bufferView < 0) return image.image;
-    if (static_cast<std::size_t>(image.bufferView) >= model_.bufferViews.size()) {
-      Fail(where + " refers to bufferView " + std::to_string(image.bufferView) +
-           ", which does not exist");
-    }
     const tinygltf::BufferView& view =
-        model_.bufferViews[static_cast<std::size_t>(image.bufferView)];
+        model_.bufferViews.at(static_cast<std::size_t>(image.bufferView));
     return {BufferViewData(view, image.bufferView, where), view.byteLength};
   }
 
   // --- Camera -----------------------------------------------------------------------------------
 
+  // The schema allows the two types only.
   void NoteCamera(int cameraIndex, int nodeIndex, const glm::dmat4& world) {
-    if (static_cast<std::size_t>(cameraIndex) >= model_.cameras.size()) {
-      Fail("node " + std::to_string(nodeIndex) + " refers to camera " +
-           std::to_string(cameraIndex) + ", which does not exist (" +
-           std::to_string(model_.cameras.size()) + " cameras)");
-    }
-    const std::string& type = model_.cameras[static_cast<std::size_t>(cameraIndex)].type;
-    if (type == "perspective") {
-      if (!perspective_) perspective_ = CameraInstance{cameraIndex, nodeIndex, world};
-    } else if (type == "orthographic") {
-      if (!orthographic_) orthographic_ = CameraInstance{cameraIndex, nodeIndex, world};
-    } else {
-      Fail("camera " + std::to_string(cameraIndex) + " has type '" + type +
-           "', expected perspective or orthographic");
-    }
+    const bool perspective =
+        model_.cameras.at(static_cast<std::size_t>(cameraIndex)).type == "perspective";
+    std::optional<CameraInstance>& first = perspective ? perspective_ : orthographic_;
+    if (!first) first = CameraInstance{cameraIndex, nodeIndex, world};
   }
 
   Camera MakeCamera(const Bounds& bounds, float aspect) {
@@ -660,27 +592,22 @@ class GltfFlattener {
     return FrameBounds(bounds, aspect);
   }
 
+  // The schema check has made yfov, znear and zfar valid as floats (absent zfar reads 0).
   Camera FileCamera(const CameraInstance& instance, const Bounds& bounds, float aspect) {
-    const tinygltf::Camera& source = model_.cameras[static_cast<std::size_t>(instance.camera)];
+    const tinygltf::Camera& source = model_.cameras.at(static_cast<std::size_t>(instance.camera));
     const tinygltf::PerspectiveCamera& lens = source.perspective;
     std::string where = "camera " + std::to_string(instance.camera);
-    if (!source.name.empty()) where.append(" '").append(source.name).append("'");
-    if (!(std::isfinite(lens.yfov) && lens.yfov > 0.0 && lens.yfov < std::numbers::pi)) {
-      Fail(where + ": yfov " + FormatNumber(lens.yfov) + " is not between 0 and pi");
-    }
-    if (!(std::isfinite(lens.znear) && lens.znear > 0.0)) {
-      Fail(where + ": znear " + FormatNumber(lens.znear) + " is not positive");
-    }
+    if (!source.name.empty()) where.append(" ").append(gltf::Quoted(source.name));
     const bool infinite = lens.zfar == 0.0;
-    if (!infinite && !(std::isfinite(lens.zfar) && lens.zfar > lens.znear)) {
-      Fail(where + ": zfar " + FormatNumber(lens.zfar) + " is not beyond znear " +
-           FormatNumber(lens.znear));
-    }
     // glTF cameras look down their node's -z with +y up.
     const glm::dvec3 eye(instance.world[3]);
+    if (!WithinCoordinateBound(eye)) {
+      Fail("node " + std::to_string(instance.node) + " (" + where + "): the eye lies at " +
+           FormatVec3(glm::vec3(eye)) + " after its node transforms, " + CoordinateBoundText());
+    }
     const glm::dvec3 back(instance.world[2]);
     const glm::dvec3 right = glm::cross(-back, glm::dvec3(instance.world[1]));
-    if (!IsFinite(glm::vec3(eye)) || !(glm::length(back) > 0.0) || !(glm::length(right) > 0.0)) {
+    if (!(glm::length(back) > 0.0) || !(glm::length(right) > 0.0)) {
       Fail("node " + std::to_string(instance.node) + " (" + where +
            ") has a degenerate transform: no view direction or up vector");
     }
@@ -786,13 +713,12 @@ class GltfFlattener {
 
   void TransformToWorld(Mesh& mesh, const glm::dmat4& world, const std::string& where) const {
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-      const glm::dvec4 p = world * glm::dvec4(glm::dvec3(mesh.positions[i]), 1.0);
-      mesh.positions[i] = glm::vec3(p);
-      if (!IsFinite(mesh.positions[i])) {
-        Fail(where + ": vertex " + std::to_string(i) +
-             " has a non-finite position after its node transforms " +
-             FormatVec3(mesh.positions[i]));
+      const glm::dvec3 p(world * glm::dvec4(glm::dvec3(mesh.positions[i]), 1.0));
+      if (!WithinCoordinateBound(p)) {
+        Fail(where + ": vertex " + std::to_string(i) + " lies at " + FormatVec3(glm::vec3(p)) +
+             " after its node transforms, " + CoordinateBoundText());
       }
+      mesh.positions[i] = glm::vec3(p);
     }
     const glm::dmat3 linear(world);
     const double determinant = glm::determinant(linear);
@@ -815,19 +741,14 @@ class GltfFlattener {
     }
   }
 
-  const tinygltf::Accessor& Accessor(int index, std::string_view role,
-                                     const std::string& where) const {
-    if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size()) {
-      Fail(where + ": " + std::string(role) + " accessor " + std::to_string(index) +
-           " does not exist (" + std::to_string(model_.accessors.size()) + " accessors)");
-    }
-    return model_.accessors[static_cast<std::size_t>(index)];
+  const tinygltf::Accessor& Accessor(int index) const {
+    return model_.accessors.at(static_cast<std::size_t>(index));
   }
 
   // Checks the accessor's type and that all its elements lie inside its bufferView and buffer.
   ElementView ViewElements(int index, const AccessorUse& use, std::size_t elementSize,
                            const std::string& where) const {
-    const tinygltf::Accessor& accessor = Accessor(index, use.role, where);
+    const tinygltf::Accessor& accessor = Accessor(index);
     const std::string name =
         where + ": " + std::string(use.role) + " accessor " + std::to_string(index);
     if (accessor.type != use.type) {
@@ -843,12 +764,8 @@ class GltfFlattener {
       }
       return view;
     }
-    if (static_cast<std::size_t>(accessor.bufferView) >= model_.bufferViews.size()) {
-      Fail(name + " refers to bufferView " + std::to_string(accessor.bufferView) +
-           ", which does not exist");
-    }
     const tinygltf::BufferView& bufferView =
-        model_.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
+        model_.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
     const unsigned char* viewStart = BufferViewData(bufferView, accessor.bufferView, name);
     view.stride = bufferView.byteStride == 0 ? elementSize : bufferView.byteStride;
     if (view.stride < elementSize) {
@@ -869,13 +786,10 @@ class GltfFlattener {
   const unsigned char* BufferViewData(const tinygltf::BufferView& bufferView, int viewIndex,
                                       const std::string& name) const {
     const std::string viewName = name + ": bufferView " + std::to_string(viewIndex);
-    if (bufferView.buffer < 0 ||
-        static_cast<std::size_t>(bufferView.buffer) >= model_.buffers.size()) {
-      Fail(viewName + " refers to buffer " + std::to_string(bufferView.buffer) +
-           ", which does not exist");
-    }
+    // The schema check compared the view with the buffer's byteLength; this compares it with
+    // the bytes tinygltf holds, as memory safety must not rest on the two agreeing.
     const std::vector<unsigned char>& data =
-        model_.buffers[static_cast<std::size_t>(bufferView.buffer)].data;
+        model_.buffers.at(static_cast<std::size_t>(bufferView.buffer)).data;
     if (bufferView.byteOffset > data.size() ||
         bufferView.byteLength > data.size() - bufferView.byteOffset) {
       Fail(viewName + " (bytes " + std::to_string(bufferView.byteOffset) + " + " +
@@ -895,7 +809,7 @@ class GltfFlattener {
 
   std::vector<glm::vec3> ReadVec3(int index, const AccessorUse& use,
                                   const std::string& where) const {
-    const tinygltf::Accessor& accessor = Accessor(index, use.role, where);
+    const tinygltf::Accessor& accessor = Accessor(index);
     if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
       Fail(where + ": " + std::string(use.role) + " accessor " + std::to_string(index) + " holds " +
            ComponentTypeName(accessor.componentType) + " components; aasim reads float only");
@@ -914,7 +828,7 @@ class GltfFlattener {
   // Float, or unsigned byte or short normalized to [0, 1], as the glTF spec allows.
   std::vector<glm::vec2> ReadTexcoords(int index, const std::string& where) const {
     const AccessorUse use{"TEXCOORD_0", TINYGLTF_TYPE_VEC2};
-    const tinygltf::Accessor& accessor = Accessor(index, use.role, where);
+    const tinygltf::Accessor& accessor = Accessor(index);
     const std::string name = where + ": TEXCOORD_0 accessor " + std::to_string(index);
     std::size_t size = 0;
     switch (accessor.componentType) {
@@ -955,7 +869,7 @@ class GltfFlattener {
 
   std::vector<std::uint32_t> ReadIndices(int index, const std::string& where) const {
     const AccessorUse use{"indices", TINYGLTF_TYPE_SCALAR};
-    const tinygltf::Accessor& accessor = Accessor(index, use.role, where);
+    const tinygltf::Accessor& accessor = Accessor(index);
     std::size_t size = 0;
     switch (accessor.componentType) {
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;
@@ -987,17 +901,18 @@ class GltfFlattener {
     return value;
   }
 
-  void WarnSkipped() const {
+  void WarnSkipped() {
     for (const SkippedKind& kind : skipped_) {
       if (kind.count == 0) continue;
-      std::cerr << path_.string() << ": warning: skipped " << kind.count << ' ' << kind.name
-                << " primitive" << (kind.count == 1 ? "" : "s")
-                << " (only triangles have coverage)\n";
+      Warn("skipped " + std::to_string(kind.count) + " " + std::string(kind.name) + " primitive" +
+           (kind.count == 1 ? "" : "s") + " (only triangles have coverage)");
     }
   }
 
-  const std::filesystem::path& path_;
+  const std::string& file_;
   const tinygltf::Model& model_;
+  const std::vector<gltf::ImageOrigin>& imageOrigins_;
+  gltf::WarningLog& warnings_;
   std::vector<Mesh> meshes_;
   std::vector<Material> materials_;
   std::vector<Texture> textures_;
@@ -1006,77 +921,134 @@ class GltfFlattener {
   std::map<int, int> imageTexture_;       // glTF image -> textures_, -1 when dropped
   std::optional<CameraInstance> perspective_;
   std::optional<CameraInstance> orthographic_;
-  std::set<std::string> warned_;
   std::size_t nodeInstances_ = 0;
   std::size_t meshInstances_ = 0;
+  std::size_t sceneVertices_ = 0;
+  std::size_t sceneIndices_ = 0;
+  std::size_t sceneTexels_ = 0;
   // Indexed by glTF mode; the triangle modes' slots stay unused.
   std::array<SkippedKind, 4> skipped_{SkippedKind{"POINTS"}, SkippedKind{"LINES"},
                                       SkippedKind{"LINE_LOOP"}, SkippedKind{"LINE_STRIP"}};
 };
 
-// The JSON text of a .gltf, or the JSON chunk of a .glb; empty when the file is unreadable.
-std::string JsonText(const std::filesystem::path& path, bool binary) {
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return {};
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  std::ifstream file(path, std::ios::binary);
-  if (!file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) return {};
-  if (!binary) return bytes;
-  if (bytes.size() < kGlbJsonStart) return {};
-  std::uint32_t chunkLength = 0;
-  std::uint32_t chunkType = 0;
-  std::memcpy(&chunkLength, bytes.data() + 12, sizeof(chunkLength));
-  std::memcpy(&chunkType, bytes.data() + 16, sizeof(chunkType));
-  if (chunkType != kGlbJsonChunkType || chunkLength > bytes.size() - kGlbJsonStart) return {};
-  return bytes.substr(kGlbJsonStart, chunkLength);
-}
-
-// tinygltf rejects Draco files before we see the model (their accessors lack bufferViews), so a
-// failed load is re-read here to give the real reason.
-bool RequiresDraco(const std::filesystem::path& path, bool binary) {
-  const nlohmann::json document =
-      nlohmann::json::parse(JsonText(path, binary), nullptr, /*allow_exceptions=*/false);
-  if (!document.is_object()) return false;
+// Decided before the schema check, which would otherwise stop a Draco file at its first
+// accessor without a bufferView instead of saying what the file needs.
+void RequireSupportedExtensions(const nlohmann::json& document, const std::string& file) {
+  if (!document.is_object()) return;  // the schema check says why
   const auto required = document.find("extensionsRequired");
-  if (required == document.end() || !required->is_array()) return false;
-  return std::any_of(required->begin(), required->end(), [](const nlohmann::json& name) {
-    return name.is_string() && name.get<std::string>() == kDracoExtension;
-  });
+  if (required == document.end() || !required->is_array()) return;
+  for (const nlohmann::json& name : *required) {
+    if (!name.is_string()) continue;
+    const auto& text = name.get_ref<const std::string&>();
+    if (text == kDracoExtension) throw SceneError(file + ": " + std::string(kDracoUnsupported));
+    if (!IsAppearanceExtension(text)) {
+      throw SceneError(file + ": requires extension " + gltf::Excerpt(text) +
+                       ", which aasim does not support");
+    }
+  }
 }
 
-tinygltf::Model ParseFile(const std::filesystem::path& path, bool binary) {
-  std::error_code error;
-  if (!std::filesystem::exists(path, error)) throw SceneError(path.string() + ": no such file");
-  if (!std::filesystem::is_regular_file(path, error)) {
-    throw SceneError(path.string() + ": not a regular file");
+// tinygltf opens files through these callbacks only; they serve the bytes ReadResources has
+// read, under the names ServeResources gave them, and nothing else.
+using ServedFiles = std::map<std::string, std::vector<std::uint8_t>*>;
+
+bool IsServed(const std::string& name, void* served) {
+  return static_cast<const ServedFiles*>(served)->contains(name);
+}
+
+std::string SameName(const std::string& name, void*) { return name; }
+
+bool Serve(std::vector<unsigned char>* out, std::string* error, const std::string& name,
+           void* served) {
+  const auto& files = *static_cast<const ServedFiles*>(served);
+  const auto it = files.find(name);
+  if (it == files.end()) {
+    *error = "aasim serves only the resources it has read";
+    return false;
+  }
+  out->swap(*it->second);  // each is asked for once; moving spares a copy
+  return true;
+}
+
+bool RefuseWrite(std::string* error, const std::string&, const std::vector<unsigned char>&,
+                 void*) {
+  *error = "aasim writes no files";
+  return false;
+}
+
+// Points every buffer and image uri of the document at bytes already read.
+ServedFiles ServeResources(nlohmann::json& document, gltf::GltfResources& resources) {
+  ServedFiles served;
+  const auto serve = [&](const char* array, std::vector<std::vector<std::uint8_t>>& bytes) {
+    if (!document.contains(array)) return;
+    nlohmann::json& items = document[array];
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      if (items[i].contains("bufferView")) continue;
+      const std::string name = std::string("aasim-resource/") + array + "/" + std::to_string(i);
+      items[i]["uri"] = name;
+      served.emplace(name, &bytes.at(i));
+    }
+  };
+  serve("buffers", resources.buffers);
+  serve("images", resources.images);
+  return served;
+}
+
+// tinygltf reads the checked document, re-serialised: what it parses is exactly what
+// ValidateGltfSchema saw (duplicate keys resolved, URIs replaced).
+tinygltf::Model BuildModel(nlohmann::json& document, gltf::GltfResources& resources,
+                           const std::string& file, gltf::WarningLog& warnings) {
+  ServedFiles served = ServeResources(document, resources);
+  const std::string text = document.dump();
+  if (text.size() > std::numeric_limits<unsigned int>::max()) {
+    throw SceneError(file + ": the glTF document is too large for tinygltf");
   }
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&KeepEncodedImage, nullptr);
+  parser.SetFsCallbacks(tinygltf::FsCallbacks{&IsServed, &SameName, &Serve, &RefuseWrite, &served});
   tinygltf::Model model;
   std::string errors;
-  std::string warnings;
+  std::string warningText;
   bool parsed = false;
   try {
-    parsed = binary ? parser.LoadBinaryFromFile(&model, &errors, &warnings, path.string())
-                    : parser.LoadASCIIFromFile(&model, &errors, &warnings, path.string());
+    parsed = parser.LoadASCIIFromString(&model, &errors, &warningText, text.data(),
+                                        static_cast<unsigned int>(text.size()), "");
   } catch (const std::exception& e) {
-    // tinygltf lets some JSON type errors escape as exceptions instead of reporting them.
-    throw SceneError(path.string() + ": malformed glTF: " + OneLine(e.what()));
+    throw SceneError(file + ": malformed glTF: " + OneLine(e.what()));
   }
-  PrintWarnings(path, warnings);
+  PrintWarnings(warnings, warningText);
   if (!parsed) {
-    if (RequiresDraco(path, binary)) {
-      throw SceneError(path.string() + ": " + std::string(kDracoUnsupported));
-    }
-    throw SceneError(path.string() + ": cannot load glTF: " +
+    throw SceneError(file + ": cannot load glTF: " +
                      (errors.empty() ? std::string("unknown tinygltf error") : OneLine(errors)));
   }
-  PrintWarnings(path, errors);
+  PrintWarnings(warnings, errors);
   return model;
 }
 
 }  // namespace
+
+Scene LoadGltfFromMemory(std::span<const std::uint8_t> bytes, bool binary,
+                         const std::filesystem::path& baseDir, std::string_view name,
+                         float aspect) {
+  const std::string file(name);
+  gltf::WarningLog warnings(file);
+  std::span<const std::uint8_t> jsonBytes = bytes;
+  std::optional<std::span<const std::uint8_t>> bin;
+  if (binary) {
+    const gltf::GlbChunks chunks = gltf::SplitGlb(bytes, file, warnings);
+    jsonBytes = chunks.json;
+    bin = chunks.bin;
+  }
+  nlohmann::json document = gltf::ParseGltfJson(
+      {reinterpret_cast<const char*>(jsonBytes.data()), jsonBytes.size()}, file);
+  RequireSupportedExtensions(document, file);
+  gltf::ValidateGltfSchema(document, binary, file, warnings);
+  gltf::GltfResources resources = gltf::ReadResources(document, bin, baseDir, file, warnings);
+  const tinygltf::Model model = BuildModel(document, resources, file, warnings);
+  Scene scene = GltfFlattener(file, model, resources.imageOrigins, warnings).Flatten(aspect);
+  scene.name = file;
+  return scene;
+}
 
 Scene LoadGltf(const std::filesystem::path& path, float aspect) {
   const std::string extension = Lowercase(path.extension().string());
@@ -1085,8 +1057,10 @@ Scene LoadGltf(const std::filesystem::path& path, float aspect) {
                      path.extension().string() +
                      "'; expected .gltf or .glb (or builtin:NAME for a built-in scene)");
   }
-  const tinygltf::Model model = ParseFile(path, extension == ".glb");
-  Scene scene = GltfFlattener(path, model).Flatten(aspect);
+  const std::vector<std::uint8_t> bytes =
+      gltf::ReadRegularFile(path, kMaxGltfFileBytes, path.string() + ": ");
+  Scene scene = LoadGltfFromMemory(bytes, extension == ".glb", path.parent_path(), path.string(),
+                                   aspect);
   scene.name = path.filename().string();
   return scene;
 }

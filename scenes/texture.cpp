@@ -3,9 +3,15 @@
 
 #include "scenes/texture.h"
 
+#include <stb_image.h>
+
+#include <algorithm>
+#include <array>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -30,7 +36,91 @@ std::vector<float> DecodeTable(int bitsPerChannel, ColourEncoding encoding) {
   return table;
 }
 
+constexpr std::array<std::uint8_t, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+constexpr std::array<std::uint8_t, 3> kJpegSignature = {0xFF, 0xD8, 0xFF};
+
+bool StartsWith(std::span<const std::uint8_t> bytes, std::span<const std::uint8_t> prefix) {
+  return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
+}
+
+// stb_image takes the length as an int.
+int EncodedLength(std::span<const std::uint8_t> encoded, const std::string& name) {
+  if (encoded.size() > static_cast<std::size_t>(INT_MAX)) {
+    throw SceneError(name + ": " + std::to_string(encoded.size()) +
+                     " bytes of image data is more than stb_image reads");
+  }
+  return static_cast<int>(encoded.size());
+}
+
+std::string FailureReason() {
+  const char* reason = stbi_failure_reason();
+  return reason == nullptr ? "unknown reason" : reason;
+}
+
+struct StbFree {
+  void operator()(void* pixels) const { stbi_image_free(pixels); }
+};
+
 }  // namespace
+
+ImageFormat SniffImageFormat(std::span<const std::uint8_t> encoded) {
+  if (StartsWith(encoded, kPngSignature)) return ImageFormat::Png;
+  if (StartsWith(encoded, kJpegSignature)) return ImageFormat::Jpeg;
+  return ImageFormat::Other;
+}
+
+ImageSize ReadImageSize(std::span<const std::uint8_t> encoded, const std::string& name) {
+  if (SniffImageFormat(encoded) == ImageFormat::Other) {
+    throw SceneError(name + ": cannot decode: no PNG or JPEG signature");
+  }
+  ImageSize size;
+  int channels = 0;
+  if (stbi_info_from_memory(encoded.data(), EncodedLength(encoded, name), &size.width,
+                            &size.height, &channels) == 0) {
+    throw SceneError(name + ": cannot decode: " + FailureReason());
+  }
+  const std::string dimensions = std::to_string(size.width) + "x" + std::to_string(size.height);
+  if (size.width <= 0 || size.height <= 0) {
+    throw SceneError(name + ": image size " + dimensions + " is empty");
+  }
+  if (size.width > kMaxImageSide || size.height > kMaxImageSide) {
+    throw SceneError(name + ": image size " + dimensions + " exceeds " +
+                     std::to_string(kMaxImageSide) + " texels on a side, the most aasim decodes");
+  }
+  const std::size_t texels =
+      static_cast<std::size_t>(size.width) * static_cast<std::size_t>(size.height);
+  if (texels > kMaxImageTexels) {
+    throw SceneError(name + ": image size " + dimensions + " is " + std::to_string(texels) +
+                     " texels, more than the " + std::to_string(kMaxImageTexels) +
+                     " aasim decodes");
+  }
+  return size;
+}
+
+Texture DecodeImage(std::span<const std::uint8_t> encoded, std::string name,
+                    ColourEncoding encoding) {
+  const ImageSize size = ReadImageSize(encoded, name);
+  const int length = EncodedLength(encoded, name);
+  const bool wide = stbi_is_16_bit_from_memory(encoded.data(), length) != 0;
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  const std::unique_ptr<void, StbFree> pixels(
+      wide ? static_cast<void*>(stbi_load_16_from_memory(encoded.data(), length, &width, &height,
+                                                         &channels, 0))
+           : static_cast<void*>(
+                 stbi_load_from_memory(encoded.data(), length, &width, &height, &channels, 0)));
+  if (pixels == nullptr) throw SceneError(name + ": cannot decode: " + FailureReason());
+  if (width != size.width || height != size.height || channels < 1 || channels > 4) {
+    throw SceneError(name + ": decoded to " + std::to_string(width) + "x" +
+                     std::to_string(height) + "x" + std::to_string(channels) +
+                     ", which its header did not announce");
+  }
+  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
+                            static_cast<std::size_t>(channels) * (wide ? 2u : 1u);
+  return DecodeTexels(std::move(name), width, height, channels, wide ? 16 : 8,
+                      {static_cast<const unsigned char*>(pixels.get()), bytes}, encoding);
+}
 
 Texture DecodeTexels(std::string name, int width, int height, int channels, int bitsPerChannel,
                      std::span<const unsigned char> bytes, ColourEncoding encoding) {
