@@ -271,7 +271,7 @@ void WriteFixtureSet(const std::string& out, std::ostream& summary) {
   const std::string manifestText = ManifestText(fixtures);
   WriteBytes(dir.Stage(kManifestName),
              {reinterpret_cast<const std::uint8_t*>(manifestText.data()), manifestText.size()});
-  dir.Commit();
+  dir.Commit(kManifestName);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   char timing[32];

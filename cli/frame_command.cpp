@@ -156,7 +156,7 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
 
   WriteImages(dir, pipeline, passRuns);
   WriteReports(dir, options, machine, strategies, threads);
-  dir.Commit();
+  dir.Commit("dispatches.json");
 
   summary << "frame      " << options.scene << ", " << options.width << "x" << options.height
           << ", " << fmask::EqaaName(options.Eqaa()) << ", pattern " << options.pattern

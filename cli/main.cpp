@@ -8,9 +8,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/common_options.h"
 #include "cli/fixtures_command.h"
 #include "cli/frame_command.h"
 #include "cli/frame_options.h"
+#include "cli/output_dir.h"
 #include "cli/raster_command.h"
 #include "cli/raster_options.h"
 #include "cli/run_command.h"
@@ -34,9 +36,15 @@ int ReportUsageError(const std::string& command, const CLI::ParseError& error) {
   return kExitUsageError;
 }
 
-}  // namespace
+// A summary lost to a full disk is an error like any other output's; buffered write errors only
+// surface at the flush. A run that already failed keeps its own one-line message.
+int CheckStdout(int exitCode) {
+  if (std::cout.flush() || exitCode != 0) return exitCode;
+  std::cerr << "aasim: standard output: write error\n";
+  return kExitRuntimeError;
+}
 
-int main(int argc, char** argv) {
+int RunAasim(int argc, char** argv) {
   CLI::App app{
       "aasim: a software model of GCN-class GPU coverage hardware (rasterizer, EQAA "
       "surfaces, anti-aliasing passes)",
@@ -50,6 +58,7 @@ int main(int argc, char** argv) {
   CLI::App* frame = cli::AddFrameCommand(app, frameOptions);
   cli::RunCommandOptions runOptions;
   CLI::App* run = cli::AddRunCommand(app, runOptions);
+  cli::RequireDecimalIntegers(app);
   app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
              "default scene, report in out/report/report.html.");
 
@@ -88,4 +97,11 @@ int main(int argc, char** argv) {
     return kExitRuntimeError;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cli::OutputDir::RemoveTemporariesOnSignals();
+  return CheckStdout(RunAasim(argc, argv));
 }

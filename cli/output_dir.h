@@ -1,7 +1,8 @@
 #pragma once
 // All-or-nothing output sets: every file of a run is written under a hidden temporary name in
 // the output directory and renamed into place only when all of them were written, so a failed
-// run never leaves a partial or corrupt set behind.
+// or interrupted run never leaves a partial or corrupt set behind and never loses the previous
+// set (see docs/cli.md, "Output sets").
 
 #include <filesystem>
 #include <string_view>
@@ -12,9 +13,11 @@ namespace cli {
 class OutputDir {
  public:
   // Creates `dir` if needed and proves it writable with a probe file. Throws OutputError
-  // ("DIR: problem: OS error") before any real work is done.
+  // ("DIR: problem: OS error") before any real work is done. Folders it creates are removed
+  // again if nothing is committed.
   explicit OutputDir(std::filesystem::path dir);
-  // Removes every staged file that was not committed, so errors leave nothing behind.
+  // Removes every staged file and created folder that was not committed, so errors leave
+  // nothing behind.
   ~OutputDir();
   OutputDir(const OutputDir&) = delete;
   OutputDir& operator=(const OutputDir&) = delete;
@@ -26,9 +29,15 @@ class OutputDir {
   // again if the set is not committed.
   std::filesystem::path Stage(std::string_view fileName);
 
-  // Renames every staged file into place and returns the final paths. If a rename fails, the
-  // files already renamed are removed too (no partial set) and OutputError is thrown.
-  std::vector<std::filesystem::path> Commit();
+  // Renames every staged file into place, `manifest` (a staged name, or empty) last, and
+  // returns the final paths. Either the whole new set is in place afterwards, or OutputError is
+  // thrown and the previous files are back as they were. Signals wait until it is done.
+  std::vector<std::filesystem::path> Commit(std::string_view manifest = {});
+
+  // Makes SIGINT and SIGTERM remove every uncommitted staged file before the process dies of
+  // the signal (exit status 128 + signal). Call first thing in main(), before any thread
+  // starts: the signals are blocked in every thread and taken by one thread of its own.
+  static void RemoveTemporariesOnSignals();
 
  private:
   struct StagedFile {
@@ -36,6 +45,9 @@ class OutputDir {
     std::filesystem::path final;
   };
   void CreateFolders(const std::filesystem::path& folder);
+  void PutLast(std::string_view manifest);
+  std::vector<std::filesystem::path> MoveOldFilesAside() const;
+  std::vector<std::filesystem::path> MoveNewFilesIn() const;
   void RemoveTemporaries() noexcept;
 
   std::filesystem::path dir_;

@@ -160,7 +160,7 @@ std::vector<std::filesystem::path> WriteOutputs(OutputDir& dir, const RasterComm
   WriteDepthExr(dir.Stage("depth.exr"), surface, run.ownership);
   if (run.eqaa) WriteEqaaOutputs(dir, options, *run.eqaa);
   WriteJson(dir.Stage("counters.json"), CountersDocument(options, run));
-  return dir.Commit();
+  return dir.Commit("counters.json");
 }
 
 std::string FormatMs(double ms) {

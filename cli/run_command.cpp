@@ -86,7 +86,7 @@ void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std:
       },
       log);
   StageStudyFiles(dir, study, resolved);
-  dir.Commit();
+  dir.Commit("report.json");
   PrintSummary(summary, study, resolved, dir.Path());
   for (const StudyPass& pass : study.passes) {
     if (pass.difference.pixels == 0) continue;

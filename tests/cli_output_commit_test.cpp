@@ -1,0 +1,218 @@
+// Output sets (docs/cli.md, "Output sets"): a failed commit leaves the previous set as it was,
+// SIGTERM at any moment of `run` and `fixtures` leaves the previous or the new complete set and
+// no hidden file, a failed `raster` leaves no directory, and a full stdout is an error.
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/output_dir.h"
+#include "cli/output_error.h"
+#include "cli_test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using cli::testing::CommandResult;
+using cli::testing::ReadText;
+using cli::testing::RunAasim;
+using cli::testing::WriteFile;
+using Snapshot = std::map<std::string, std::string>;
+
+class CliOutputCommit : public cli::testing::ScratchDirTest {};
+
+// Every file and folder under `dir` by relative path (folders with a trailing '/'), with the
+// files' bytes; hidden names included, so staging leftovers show.
+Snapshot TakeSnapshot(const fs::path& dir) {
+  Snapshot snapshot;
+  if (!fs::exists(dir)) return snapshot;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(dir)) {
+    const std::string name = fs::relative(entry.path(), dir).string();
+    if (entry.is_directory()) {
+      snapshot[name + "/"] = "";
+    } else {
+      snapshot[name] = ReadText(entry.path());
+    }
+  }
+  return snapshot;
+}
+
+std::vector<std::string> Names(const Snapshot& snapshot) {
+  std::vector<std::string> names;
+  for (const auto& [name, bytes] : snapshot) names.push_back(name);
+  return names;
+}
+
+std::vector<std::string> RasterArgs(const fs::path& out, const std::string& width) {
+  return {"raster", "--width", width, "--height", "32", "--samples", "8", "--fragments", "2", "--out", out.string()};
+}
+
+TEST_F(CliOutputCommit, ADirectoryInTheWayKeepsThePreviousSet) {
+  const fs::path out = scratch_ / "out";
+  ASSERT_EQ(RunAasim(RasterArgs(out, "64"), scratch_).exitCode, 0);
+  const Snapshot previous = TakeSnapshot(out);
+  fs::create_directory(out / "trace.json");
+  std::vector<std::string> traced = RasterArgs(out, "48");
+  traced.insert(traced.end(), {"--trace", "5,5"});
+  const CommandResult run = RunAasim(traced, scratch_);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(run.err, "aasim: " + (out / "trace.json").string() + ": cannot move into place: Is a directory\n");
+  fs::remove(out / "trace.json");
+  EXPECT_EQ(TakeSnapshot(out), previous);
+}
+
+// A rename that fails halfway (here: a staged file that was never written) puts back every
+// previous file, the manifest included, and removes the folders the set created.
+TEST_F(CliOutputCommit, AFailedRenameRestoresThePreviousSet) {
+  const fs::path dir = scratch_ / "set";
+  {
+    cli::OutputDir out(dir);
+    WriteFile(out.Stage("a.txt"), "old a");
+    WriteFile(out.Stage("m.json"), "old m");
+    out.Commit("m.json");
+  }
+  {
+    cli::OutputDir out(dir);
+    WriteFile(out.Stage("a.txt"), "new a");
+    out.Stage("b/never-written.txt");
+    WriteFile(out.Stage("m.json"), "new m");
+    EXPECT_THROW(out.Commit("m.json"), cli::OutputError);
+  }
+  EXPECT_EQ(TakeSnapshot(dir), (Snapshot{{"a.txt", "old a"}, {"m.json", "old m"}}));
+}
+
+TEST_F(CliOutputCommit, TheManifestIsCommittedLast) {
+  cli::OutputDir out(scratch_ / "set");
+  WriteFile(out.Stage("m.json"), "m");
+  WriteFile(out.Stage("a.txt"), "a");
+  WriteFile(out.Stage("b.txt"), "b");
+  const std::vector<fs::path> committed = out.Commit("m.json");
+  EXPECT_EQ(committed, (std::vector<fs::path>{out.Path() / "a.txt", out.Path() / "b.txt", out.Path() / "m.json"}));
+}
+
+TEST_F(CliOutputCommit, ASceneErrorLeavesNoDirectory) {
+  const fs::path fresh = scratch_ / "fresh" / "out";
+  const fs::path existing = scratch_ / "existing";
+  fs::create_directory(existing);
+  for (const fs::path& out : {fresh, existing}) {
+    const CommandResult run = RunAasim(
+        {"raster", "--width", "16", "--height", "16", "--scene", "builtin:nosuch", "--out", out.string()}, scratch_);
+    EXPECT_EQ(run.exitCode, 1) << run.err;
+  }
+  EXPECT_FALSE(fs::exists(scratch_ / "fresh"));
+  EXPECT_TRUE(fs::is_empty(existing));
+}
+
+int ExitCodeWithFullStdout(const std::string& args, const fs::path& scratch) {
+  const std::string command = std::string(AASIM_BINARY) + " " + args + " >/dev/full 2>'" +
+                              (scratch / "stderr.txt").string() + "'";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST_F(CliOutputCommit, AFullStdoutIsAnError) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const std::string out = (scratch_ / "out").string();
+  for (const std::string& args : {std::string("--help"), "raster --width 16 --height 16 --out '" + out + "'"}) {
+    EXPECT_EQ(ExitCodeWithFullStdout(args, scratch_), 1) << args;
+    EXPECT_EQ(ReadText(scratch_ / "stderr.txt"), "aasim: standard output: write error\n") << args;
+  }
+}
+
+// --- SIGTERM at random moments ---
+
+// Started directly (no shell in between to take the signal), output in `scratch`.
+pid_t Spawn(const std::vector<std::string>& args, const fs::path& scratch) {
+  const std::string outPath = (scratch / "stdout.txt").string(), errPath = (scratch / "stderr.txt").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> strings{AASIM_BINARY};
+  strings.insert(strings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : strings) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, AASIM_BINARY, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  EXPECT_EQ(error, 0);
+  return pid;
+}
+
+// The wait status of a run sent SIGTERM after `delay` (if still running by then).
+int TerminateAfter(const std::vector<std::string>& args, const fs::path& scratch, std::chrono::microseconds delay) {
+  const pid_t pid = Spawn(args, scratch);
+  std::this_thread::sleep_for(delay);
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return status;
+}
+
+std::chrono::microseconds TimedRun(const std::vector<std::string>& args, const fs::path& scratch) {
+  const auto start = std::chrono::steady_clock::now();
+  int status = 0;
+  ::waitpid(Spawn(args, scratch), &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadText(scratch / "stderr.txt");
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start);
+}
+
+// After a good run into `out`, interrupts the same run at `points` random moments spread over
+// its duration, every third time into a directory that does not exist yet. Each time `out` must
+// hold a complete set again (the same bytes when `deterministic`; `run`'s reports carry
+// timings) and the new directory a complete set or nothing.
+void ExpectOldOrNewSet(const std::vector<std::string>& command, bool deterministic, const fs::path& scratch,
+                       int points) {
+  const fs::path out = scratch / "out", fresh = scratch / "fresh";
+  std::vector<std::string> args = command;
+  args.insert(args.end(), {"--out", out.string()});
+  const std::chrono::microseconds duration = TimedRun(args, scratch);
+  const Snapshot good = TakeSnapshot(out);
+  std::mt19937 random(10);
+  std::uniform_int_distribution<std::int64_t> moment(0, duration.count() * 11 / 10);
+  for (int point = 0; point < points; ++point) {
+    const std::chrono::microseconds delay(moment(random));
+    const bool intoFresh = point % 3 == 0;
+    const fs::path dir = intoFresh ? fresh : out;
+    std::vector<std::string> interrupted = command;
+    interrupted.insert(interrupted.end(), {"--out", dir.string()});
+    const int status = TerminateAfter(interrupted, scratch, delay);
+    SCOPED_TRACE("SIGTERM after " + std::to_string(delay.count()) + " us into " + dir.string());
+    EXPECT_TRUE((WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) || (WIFEXITED(status) && WEXITSTATUS(status) == 0))
+        << status << ": " << ReadText(scratch / "stderr.txt");
+    if (intoFresh && !fs::exists(fresh)) continue;
+    const Snapshot after = TakeSnapshot(dir);
+    EXPECT_EQ(Names(after), Names(good));
+    if (deterministic) {
+      EXPECT_TRUE(after == good);
+    }
+    fs::remove_all(fresh);
+  }
+}
+
+TEST_F(CliOutputCommit, SigtermDuringRunLeavesTheOldOrTheNewSet) {
+  ExpectOldOrNewSet(
+      {"run", "--quick", "--width", "160", "--height", "96", "--cache", (scratch_ / "cache").string()}, false,
+      scratch_, 8);
+}
+
+TEST_F(CliOutputCommit, SigtermDuringFixturesLeavesTheOldOrTheNewSet) {
+  ExpectOldOrNewSet({"fixtures"}, true, scratch_, 5);
+}
+
+}  // namespace
