@@ -239,6 +239,7 @@ void OutputDir::RemoveTemporariesOnSignals() {
     // Dying of the signal itself gives the caller the conventional status (128 + signal).
     pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);
     ::raise(signal);
+    // Reached only if a library installed its own handler; the mutex is held, so end here.
     std::_Exit(128 + signal);
   }).detach();
 }

@@ -157,6 +157,7 @@ pid_t Spawn(const std::vector<std::string>& args, const fs::path& scratch) {
 // The wait status of a run sent SIGTERM after `delay` (if still running by then).
 int TerminateAfter(const std::vector<std::string>& args, const fs::path& scratch, std::chrono::microseconds delay) {
   const pid_t pid = Spawn(args, scratch);
+  if (pid <= 0) return -1;  // kill(-1) would signal every process of the user
   std::this_thread::sleep_for(delay);
   ::kill(pid, SIGTERM);
   int status = 0;
@@ -167,7 +168,8 @@ int TerminateAfter(const std::vector<std::string>& args, const fs::path& scratch
 std::chrono::microseconds TimedRun(const std::vector<std::string>& args, const fs::path& scratch) {
   const auto start = std::chrono::steady_clock::now();
   int status = 0;
-  ::waitpid(Spawn(args, scratch), &status, 0);
+  const pid_t pid = Spawn(args, scratch);
+  if (pid > 0) ::waitpid(pid, &status, 0);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadText(scratch / "stderr.txt");
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start);
 }
