@@ -2,6 +2,7 @@
 
 #include "cli/common_options.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -81,6 +82,38 @@ std::uint64_t SurfaceBytesPerPixel(int samples, int depthSamples, int fragments)
                 std::uint64_t(samples) * sizeof(fmask::UnknownCause);
   }
   return perPixel;
+}
+
+namespace {
+
+// "0064" -> "64", "-007" -> "-7"; an error for anything that is not a decimal integer.
+std::string DecimalInteger(std::string text) {
+  const std::size_t digits = text.starts_with('+') || text.starts_with('-') ? 1 : 0;
+  const bool decimal = text.size() > digits &&
+                       std::all_of(text.begin() + static_cast<std::ptrdiff_t>(digits), text.end(),
+                                   [](char c) { return c >= '0' && c <= '9'; });
+  if (!decimal) throw CLI::ValidationError("'" + text + "' is not a decimal integer");
+  const std::size_t firstNonZero = text.find_first_not_of('0', digits);
+  text.erase(digits, (firstNonZero == std::string::npos ? text.size() - 1 : firstNonZero) - digits);
+  return text;
+}
+
+}  // namespace
+
+void RequireDecimalIntegers(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    // The type name carries the validators' descriptions after the type ("INT:INT in [1 - 16]").
+    const std::string type = option->get_type_name();
+    if (type.starts_with("INT") || type.starts_with("UINT")) {
+      option->transform(CLI::Validator(
+          [](std::string& text) {
+            text = DecimalInteger(text);
+            return std::string();
+          },
+          "", "decimal"));
+    }
+  }
+  for (CLI::App* command : app.get_subcommands({})) RequireDecimalIntegers(*command);
 }
 
 }  // namespace cli

@@ -36,6 +36,11 @@ void AddPatternOption(CLI::App& command, std::string& pattern);
 // --threads N (1..1024); sets `threads` to every core first, which is the default.
 void AddThreadsOption(CLI::App& command, int& threads);
 
+// Makes every integer option of `app` and its subcommands read decimal only: CLI11 converts with
+// base 0, so `--width 0064` would be octal 52 and `0x40` hexadecimal. Leading zeros are dropped
+// ("0064" is 64); anything but optional sign and digits is a usage error naming the option.
+void RequireDecimalIntegers(CLI::App& app);
+
 // The single-value checks of S, Z and F; whether the three form a legal mode is
 // fmask::ValidateEqaaConfig's call (CheckEqaaMode).
 CLI::Validator SampleCountCheck();

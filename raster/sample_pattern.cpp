@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raster/json_input.h"
+
 #include "raster/raster_error.h"
 
 namespace raster {
@@ -262,13 +264,14 @@ class PatternFileParser {
   }
 
   nlohmann::json ParseText(std::string_view jsonText) const {
+    nlohmann::json root;
     try {
-      nlohmann::json root = nlohmann::json::parse(jsonText.begin(), jsonText.end());
-      if (!root.is_object()) Fail("must hold one JSON object, found " + root.dump());
-      return root;
-    } catch (const nlohmann::json::parse_error& e) {
-      Fail(std::string("is not valid JSON: ") + e.what());
+      root = ParseJsonText(jsonText, /*allowComments=*/false);
+    } catch (const JsonTextError& e) {
+      Fail(e.what());
     }
+    if (!root.is_object()) Fail("must hold one JSON object, found " + JsonExcerpt(root));
+    return root;
   }
 
   void CheckKeys(const nlohmann::json& root) const {
@@ -287,7 +290,7 @@ class PatternFileParser {
   std::string Name(const nlohmann::json& root) const {
     const nlohmann::json& name = Required(root, "name");
     if (!name.is_string() || name.get_ref<const std::string&>().empty()) {
-      Fail("needs \"name\" to be a non-empty string, found " + name.dump());
+      Fail("needs \"name\" to be a non-empty string, found " + JsonExcerpt(name));
     }
     return name.get<std::string>();
   }
@@ -295,10 +298,10 @@ class PatternFileParser {
   int SampleCount(const nlohmann::json& root) const {
     const nlohmann::json& samples = Required(root, "samples");
     if (!samples.is_number_integer()) {
-      Fail("needs \"samples\" to be an integer, found " + samples.dump());
+      Fail("needs \"samples\" to be an integer, found " + JsonExcerpt(samples));
     }
     if (samples.get<std::int64_t>() != expectedSamples_) {
-      Fail("defines " + samples.dump() + " samples but --samples is " +
+      Fail("defines " + JsonExcerpt(samples) + " samples but --samples is " +
            std::to_string(expectedSamples_));
     }
     return expectedSamples_;
@@ -309,12 +312,12 @@ class PatternFileParser {
     const nlohmann::json& units = root.at("units");
     if (units == "sixteenths") return Units::kSixteenths;
     if (units == "pixels") return Units::kPixels;
-    Fail("needs \"units\" to be \"sixteenths\" or \"pixels\", found " + units.dump());
+    Fail("needs \"units\" to be \"sixteenths\" or \"pixels\", found " + JsonExcerpt(units));
   }
 
   PerPixel ParsePixels(const nlohmann::json& pixels, int count, Units units) const {
     if (!pixels.is_array() || pixels.size() != kQuadPixels) {
-      Fail("needs \"pixels\" to be 4 lists, one per quad pixel, found " + pixels.dump());
+      Fail("needs \"pixels\" to be 4 lists, one per quad pixel, found " + JsonExcerpt(pixels));
     }
     PerPixel perPixel;
     for (int p = 0; p < kQuadPixels; ++p) perPixel[p] = ParseList(pixels[p], count, units, p);
@@ -325,7 +328,7 @@ class PatternFileParser {
   Offsets ParseList(const nlohmann::json& list, int count, Units units,
                     std::optional<int> pixel) const {
     const std::string owner = pixel ? " for quad pixel " + std::to_string(*pixel) : "";
-    if (!list.is_array()) Fail("needs a list of [x, y] pairs" + owner + ", found " + list.dump());
+    if (!list.is_array()) Fail("needs a list of [x, y] pairs" + owner + ", found " + JsonExcerpt(list));
     if (std::ssize(list) != count) {
       Fail("has " + std::to_string(list.size()) + " offsets" + owner + ", expected " +
            std::to_string(count));
@@ -340,7 +343,7 @@ class PatternFileParser {
     const std::string where = (pixel ? "quad pixel " + std::to_string(*pixel) + " " : "") +
                               "sample " + std::to_string(sample);
     if (!pair.is_array() || pair.size() != 2 || !pair[0].is_number() || !pair[1].is_number()) {
-      FailAt(where, "must be an [x, y] pair of numbers, found " + pair.dump());
+      FailAt(where, "must be an [x, y] pair of numbers, found " + JsonExcerpt(pair));
     }
     const std::optional<int> x = ToSixteenths(pair[0].get<double>(), units);
     const std::optional<int> y = ToSixteenths(pair[1].get<double>(), units);
@@ -349,21 +352,21 @@ class PatternFileParser {
           units == Units::kPixels
               ? "x and y must be multiples of 1/16 in [0, 1) (px from the pixel's top-left corner)"
               : GridRule();
-      FailAt(where, (units == Units::kPixels ? "position (" : "offset (") + pair[0].dump() + ", " +
-                        pair[1].dump() + ") is off the sample grid: " + rule);
+      FailAt(where, (units == Units::kPixels ? "position (" : "offset (") + JsonExcerpt(pair[0]) + ", " +
+                        JsonExcerpt(pair[1]) + ") is off the sample grid: " + rule);
     }
     return {*x, *y};
   }
 
   // Pixel positions convert as floor((p - 0.5) * 16) (hw-facts §4.4), accepted only when exact:
   // a value between grid points would otherwise move silently. p * 16 is exact in binary
-  // floating point, so it is an integer exactly when p is on the grid.
+  // floating point, so it is an integer exactly when p is on the grid; the grid test comes
+  // before the shift by -8, which would round a tiny off-grid p (5e-324) onto the grid.
   static std::optional<int> ToSixteenths(double value, Units units) {
-    const double sixteenths = units == Units::kPixels ? value * 16.0 + kSampleOffsetMin : value;
-    if (!std::isfinite(sixteenths) || std::floor(sixteenths) != sixteenths ||
-        sixteenths < kSampleOffsetMin || sixteenths > kSampleOffsetMax) {
-      return std::nullopt;
-    }
+    const double scaled = units == Units::kPixels ? value * 16.0 : value;
+    if (!std::isfinite(scaled) || std::floor(scaled) != scaled) return std::nullopt;
+    const double sixteenths = units == Units::kPixels ? scaled + kSampleOffsetMin : scaled;
+    if (sixteenths < kSampleOffsetMin || sixteenths > kSampleOffsetMax) return std::nullopt;
     return static_cast<int>(sixteenths);
   }
 
@@ -465,12 +468,13 @@ SamplePattern ParsePatternJson(std::string_view jsonText, int expectedSamples,
 }
 
 SamplePattern LoadPatternJson(const std::filesystem::path& path, int expectedSamples) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw RasterError("pattern file '" + path.string() + "' cannot be opened");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw RasterError("pattern file '" + path.string() + "' cannot be read");
-  return ParsePatternJson(text.str(), expectedSamples, path.string());
+  std::string text;
+  try {
+    text = ReadJsonFile(path);
+  } catch (const JsonTextError& e) {
+    throw RasterError("pattern file '" + path.string() + "' " + e.what());
+  }
+  return ParsePatternJson(text, expectedSamples, path.string());
 }
 
 std::string FormatPatternJson(const SamplePattern& pattern) {

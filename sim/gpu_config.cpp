@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raster/json_input.h"
 #include "sim/wave.h"
 
 namespace sim {
@@ -26,42 +27,49 @@ constexpr BuiltinGpu kBuiltinGpus[] = {
 };
 
 // The keys of a GPU file besides "name", in file order; one table drives the required-key,
-// unknown-key and type checks so they cannot drift apart.
+// unknown-key, type and range checks so they cannot drift apart. The ranges are plausibility
+// bounds, wide enough for every GCN and later part (the GFX7 values of sim/gpus/ sit well
+// inside them) and narrow enough that the occupancy and timing arithmetic cannot overflow and a
+// typo (VGPRs 4, a clock of 1e400) is caught where it is read, naming file and key.
 struct IntKey {
   const char* key;
   int GpuConfig::*member;
+  int min;
+  int max;
 };
 struct DoubleKey {
   const char* key;
   double GpuConfig::*member;
+  double min;
+  double max;
 };
 
 constexpr IntKey kIntKeys[] = {
-    {"shaderEngines", &GpuConfig::shaderEngines},
-    {"computeUnits", &GpuConfig::computeUnits},
-    {"simdsPerCu", &GpuConfig::simdsPerCu},
-    {"waveSlotsPerSimd", &GpuConfig::waveSlotsPerSimd},
-    {"vgprsPerSimdLane", &GpuConfig::vgprsPerSimdLane},
-    {"vgprGranule", &GpuConfig::vgprGranule},
-    {"maxVgprsPerWave", &GpuConfig::maxVgprsPerWave},
-    {"sgprsPerSimd", &GpuConfig::sgprsPerSimd},
-    {"sgprGranule", &GpuConfig::sgprGranule},
-    {"maxSgprsPerWave", &GpuConfig::maxSgprsPerWave},
-    {"ldsBytesPerCu", &GpuConfig::ldsBytesPerCu},
-    {"ldsGranuleBytes", &GpuConfig::ldsGranuleBytes},
-    {"maxLdsBytesPerGroup", &GpuConfig::maxLdsBytesPerGroup},
-    {"maxGroupsPerCu", &GpuConfig::maxGroupsPerCu},
-    {"maxThreadsPerGroup", &GpuConfig::maxThreadsPerGroup},
+    {"shaderEngines", &GpuConfig::shaderEngines, 1, 16},
+    {"computeUnits", &GpuConfig::computeUnits, 1, 512},
+    {"simdsPerCu", &GpuConfig::simdsPerCu, 1, 8},
+    {"waveSlotsPerSimd", &GpuConfig::waveSlotsPerSimd, 1, 32},
+    {"vgprsPerSimdLane", &GpuConfig::vgprsPerSimdLane, 64, 2048},
+    {"vgprGranule", &GpuConfig::vgprGranule, 1, 64},
+    {"maxVgprsPerWave", &GpuConfig::maxVgprsPerWave, 64, 2048},
+    {"sgprsPerSimd", &GpuConfig::sgprsPerSimd, 64, 8192},
+    {"sgprGranule", &GpuConfig::sgprGranule, 1, 64},
+    {"maxSgprsPerWave", &GpuConfig::maxSgprsPerWave, 16, 1024},
+    {"ldsBytesPerCu", &GpuConfig::ldsBytesPerCu, 1024, 1 << 20},
+    {"ldsGranuleBytes", &GpuConfig::ldsGranuleBytes, 4, 1 << 16},
+    {"maxLdsBytesPerGroup", &GpuConfig::maxLdsBytesPerGroup, 1024, 1 << 20},
+    {"maxGroupsPerCu", &GpuConfig::maxGroupsPerCu, 1, 64},
+    {"maxThreadsPerGroup", &GpuConfig::maxThreadsPerGroup, 64, 4096},
 };
 
 constexpr DoubleKey kDoubleKeys[] = {
-    {"clockMhz", &GpuConfig::clockMhz},
-    {"dramGBytesPerSecond", &GpuConfig::dramGBytesPerSecond},
-    {"waveLaunchesPerClockPerSe", &GpuConfig::waveLaunchesPerClockPerSe},
-    {"rasterPixelsPerClockPerSe", &GpuConfig::rasterPixelsPerClockPerSe},
-    {"hiStencilTilesPerClockPerSe", &GpuConfig::hiStencilTilesPerClockPerSe},
-    {"wavesPerSimdToHideLatency", &GpuConfig::wavesPerSimdToHideLatency},
-    {"dispatchOverheadMicroseconds", &GpuConfig::dispatchOverheadMicroseconds},
+    {"clockMhz", &GpuConfig::clockMhz, 1.0, 1e4},
+    {"dramGBytesPerSecond", &GpuConfig::dramGBytesPerSecond, 1.0, 1e5},
+    {"waveLaunchesPerClockPerSe", &GpuConfig::waveLaunchesPerClockPerSe, 1e-3, 64.0},
+    {"rasterPixelsPerClockPerSe", &GpuConfig::rasterPixelsPerClockPerSe, 1e-3, 256.0},
+    {"hiStencilTilesPerClockPerSe", &GpuConfig::hiStencilTilesPerClockPerSe, 1e-3, 64.0},
+    {"wavesPerSimdToHideLatency", &GpuConfig::wavesPerSimdToHideLatency, 1e-3, 64.0},
+    {"dispatchOverheadMicroseconds", &GpuConfig::dispatchOverheadMicroseconds, 1e-3, 1e6},
 };
 
 constexpr const char* kNameKey = "name";
@@ -93,8 +101,8 @@ class GpuFileParser {
     GpuConfig config;
     config.source = source_;
     config.name = Name(root);
-    for (const IntKey& entry : kIntKeys) config.*entry.member = PositiveInt(root, entry.key);
-    for (const DoubleKey& entry : kDoubleKeys) config.*entry.member = PositiveDouble(root, entry.key);
+    for (const IntKey& entry : kIntKeys) config.*entry.member = IntInRange(root, entry);
+    for (const DoubleKey& entry : kDoubleKeys) config.*entry.member = DoubleInRange(root, entry);
     CheckConsistency(config);
     return config;
   }
@@ -105,12 +113,11 @@ class GpuFileParser {
   nlohmann::json ParseText(std::string_view text) const {
     nlohmann::json root;
     try {
-      root = nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/true,
-                                   /*ignore_comments=*/true);
-    } catch (const nlohmann::json::parse_error& error) {
-      Fail(std::string("not valid JSON: ") + error.what());
+      root = raster::ParseJsonText(text, /*allowComments=*/true);
+    } catch (const raster::JsonTextError& error) {
+      Fail(error.what());
     }
-    if (!root.is_object()) Fail("must hold one JSON object, found " + root.dump());
+    if (!root.is_object()) Fail("must hold one JSON object, found " + raster::JsonExcerpt(root));
     return root;
   }
 
@@ -123,34 +130,35 @@ class GpuFileParser {
   std::string Name(const nlohmann::json& root) const {
     const nlohmann::json& value = Required(root, kNameKey);
     if (!value.is_string() || value.get_ref<const std::string&>().empty()) {
-      Fail(std::string("key '") + kNameKey + "' must be a non-empty string, found " + value.dump());
+      Fail(std::string("key '") + kNameKey + "' must be a non-empty string, found " + raster::JsonExcerpt(value));
     }
     return value.get<std::string>();
   }
 
-  int PositiveInt(const nlohmann::json& root, const char* key) const {
-    const nlohmann::json& value = Required(root, key);
-    if (!value.is_number_integer()) {
-      Fail(std::string("key '") + key + "' must be an integer, found " + value.dump());
-    }
-    // Parsed text holds non-negative integers as unsigned, which get<std::int64_t> would wrap.
-    constexpr auto kIntMax = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
-    if (value.is_number_unsigned() ? value.get<std::uint64_t>() > kIntMax
-                                   : value.get<std::int64_t>() > static_cast<std::int64_t>(kIntMax)) {
-      Fail(std::string("key '") + key + "' is too large, found " + value.dump());
-    }
-    const auto number = value.get<std::int64_t>();
-    if (number <= 0) Fail(std::string("key '") + key + "' must be positive, found " + value.dump());
-    return static_cast<int>(number);
+  [[noreturn]] void FailRange(const char* key, const nlohmann::json& value, const std::string& range) const {
+    Fail(std::string("key '") + key + "' must be " + range + ", found " + raster::JsonExcerpt(value));
   }
 
-  double PositiveDouble(const nlohmann::json& root, const char* key) const {
-    const nlohmann::json& value = Required(root, key);
-    if (!value.is_number()) Fail(std::string("key '") + key + "' must be a number, found " + value.dump());
+  int IntInRange(const nlohmann::json& root, const IntKey& entry) const {
+    const nlohmann::json& value = Required(root, entry.key);
+    const std::string range = "an integer in [" + std::to_string(entry.min) + ", " + std::to_string(entry.max) + "]";
+    if (!value.is_number_integer()) FailRange(entry.key, value, range);
+    // Parsed text holds non-negative integers as unsigned, which get<std::int64_t> would wrap.
+    const bool inRange = value.is_number_unsigned()
+                             ? value.get<std::uint64_t>() >= static_cast<std::uint64_t>(std::max(entry.min, 0)) &&
+                                   value.get<std::uint64_t>() <= static_cast<std::uint64_t>(entry.max)
+                             : value.get<std::int64_t>() >= entry.min && value.get<std::int64_t>() <= entry.max;
+    if (!inRange) FailRange(entry.key, value, range);
+    return static_cast<int>(value.get<std::int64_t>());
+  }
+
+  double DoubleInRange(const nlohmann::json& root, const DoubleKey& entry) const {
+    const nlohmann::json& value = Required(root, entry.key);
+    std::ostringstream range;
+    range << "a number in [" << entry.min << ", " << entry.max << "]";
+    if (!value.is_number()) FailRange(entry.key, value, range.str());
     const auto number = value.get<double>();
-    if (!std::isfinite(number) || !(number > 0.0)) {
-      Fail(std::string("key '") + key + "' must be positive and finite, found " + value.dump());
-    }
+    if (!(number >= entry.min && number <= entry.max)) FailRange(entry.key, value, range.str());
     return number;
   }
 
@@ -179,6 +187,7 @@ class GpuFileParser {
     CheckAtMost("maxLdsBytesPerGroup", config.maxLdsBytesPerGroup, "ldsBytesPerCu", config.ldsBytesPerCu);
     CheckAtMost("shaderEngines", config.shaderEngines, "computeUnits", config.computeUnits);
     // A group runs on one CU (hw-facts §6.2), so its waves must fit in the CU's wave slots.
+    // The key ranges bound both sides far below int's limits, so these cannot overflow.
     const int wavesPerLargestGroup = (config.maxThreadsPerGroup + kWaveLanes - 1) / kWaveLanes;
     if (wavesPerLargestGroup > config.simdsPerCu * config.waveSlotsPerSimd) {
       Fail("key 'maxThreadsPerGroup' (" + std::to_string(config.maxThreadsPerGroup) + ") needs " +
@@ -201,16 +210,13 @@ GpuConfig ParseGpuConfig(std::string_view text, const std::string& source) {
 }
 
 GpuConfig LoadGpuConfig(const std::filesystem::path& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw GpuConfigError(path.string() + ": is a directory, not a GPU file");
+  std::string text;
+  try {
+    text = raster::ReadJsonFile(path);
+  } catch (const raster::JsonTextError& error) {
+    throw GpuConfigError(path.string() + ": " + error.what());
   }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw GpuConfigError(path.string() + ": cannot be opened");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw GpuConfigError(path.string() + ": cannot be read");
-  return ParseGpuConfig(text.str(), path.string());
+  return ParseGpuConfig(text, path.string());
 }
 
 GpuConfig GpuConfigByName(std::string_view nameOrPath) {

@@ -498,6 +498,25 @@ TEST(SamplePattern, JsonErrorsNameTheFileAndSample) {
                       {"'f.json'", "3 samples; legal counts are 1, 2, 4, 8, 16"});
 }
 
+// 5e-324 px used to snap silently onto the grid: the shift by -8 px rounded the off-grid value away.
+TEST(SamplePattern, TinyOffGridPositionsAreRefused) {
+  const std::string text =
+      R"({"name":"x","samples":2,"units":"pixels","offsets":[[0.5,0.5],[5e-324,0.5]]})";
+  ExpectErrorMentions([&] { ParsePatternJson(text, 2, "f.json"); },
+                      {"'f.json'", "sample 1 position", "off the sample grid"});
+}
+
+TEST(SamplePattern, DeepNestingIsRefusedWithAShortMessage) {
+  const std::string deep = std::string(70000, '[') + std::string(70000, ']');
+  ExpectErrorMentions([&] { ParsePatternJson(deep, 4, "f.json"); },
+                      {"'f.json'", "nests deeper than 64 levels"});
+  const std::string deepOffsets = R"({"name":"x","samples":1,"offsets":)" + std::string(60, '[') +
+                                  std::string(60, ']') + "}";
+  const std::string message = ErrorOf([&] { ParsePatternJson(deepOffsets, 1, "f.json"); });
+  EXPECT_NE(message.find("'f.json'"), std::string::npos) << message;
+  EXPECT_LT(message.size(), 200u) << message;
+}
+
 // ---- Files and ResolvePattern -----------------------------------------------------------------
 
 // A file in the test temp directory, randomly named so concurrent runs of the suite do not meet.
@@ -531,6 +550,8 @@ TEST(SamplePattern, LoadAndResolveFiles) {
                       {"pattern file 'missing.json'", "cannot be opened"});
   ExpectErrorMentions([] { ResolvePattern("no/such/dir", 4); }, {"pattern file 'no/such/dir'"});
   ExpectErrorMentions([] { ResolvePattern("missing", 4); }, {"unknown sample pattern 'missing'"});
+  ExpectErrorMentions([] { LoadPatternJson("/dev/zero", 4); },
+                      {"pattern file '/dev/zero'", "not a regular file"});
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "sim/gpu_config.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -275,6 +276,61 @@ TEST(SimGpuConfig, UnreadableFilesAreNamed) {
   ExpectError([&] { LoadGpuConfig(missing); }, missing.string(), "opened");
   ExpectError([&] { GpuConfigByName(missing.string()); }, missing.string(), "opened");
   ExpectError([&] { LoadGpuConfig(dir.Path()); }, dir.Path().string(), "directory");
+}
+
+// Values that parse but describe no GPU are refused where they are read, naming file and key;
+// maxThreadsPerGroup 2147483647 used to overflow the consistency check (UBSan) and be accepted.
+TEST(SimGpuConfig, ImplausibleValuesAreRefusedWithTheirRange) {
+  struct Case {
+    const char* key;
+    nlohmann::json value;
+  };
+  const Case cases[] = {
+      {"maxVgprsPerWave", 4},
+      {"maxThreadsPerGroup", 2147483647},
+      {"simdsPerCu", 2147483647},
+      {"waveSlotsPerSimd", -10},
+      {"computeUnits", 0},
+      {"clockMhz", 1e300},
+      {"dispatchOverheadMicroseconds", -1.0},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.key);
+    nlohmann::ordered_json file = ValidFile();
+    file[c.key] = c.value;
+    ExpectError([&] { ParseGpuConfig(file.dump(), "test.jsonc"); }, "test.jsonc",
+                std::string("'") + c.key + "' must be");
+  }
+  // 1e400 is beyond a double: the parser's out_of_range exception used to escape unnamed.
+  std::string text = ValidFile().dump();
+  const std::string clock = "\"clockMhz\":800";
+  text.replace(text.find(clock), clock.size(), "\"clockMhz\":1e400");
+  ExpectError([&] { ParseGpuConfig(text, "test.jsonc"); }, "test.jsonc", "number overflow parsing '1e400'");
+}
+
+// Nesting 70,000 deep crashed the error message's dump(); the depth limit stops it at parse time
+// and no message quotes more than an excerpt of the input.
+TEST(SimGpuConfig, DeepNestingAndHugeValuesGiveShortMessages) {
+  const std::string deep = std::string(70000, '[') + std::string(70000, ']');
+  ExpectError([&] { ParseGpuConfig(deep, "deep.jsonc"); }, "deep.jsonc", "nests deeper than 64 levels");
+  const std::string deepValue = "{\"name\": " + deep + "}";
+  ExpectError([&] { ParseGpuConfig(deepValue, "deep.jsonc"); }, "deep.jsonc", "nests deeper");
+  nlohmann::ordered_json file = ValidFile();
+  file["name"] = nlohmann::json::array({std::string(100000, 'x')});
+  try {
+    ParseGpuConfig(file.dump(), "huge.jsonc");
+    ADD_FAILURE() << "no error";
+  } catch (const GpuConfigError& error) {
+    EXPECT_LT(std::string(error.what()).size(), 200u) << error.what();
+  }
+}
+
+TEST(SimGpuConfig, FifosAndDevicesAreRefusedWithoutBlocking) {
+  const TempDir dir;
+  const std::filesystem::path fifo = dir.Path() / "gpu.jsonc";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  ExpectError([&] { LoadGpuConfig(fifo); }, fifo.string(), "not a regular file");
+  ExpectError([&] { LoadGpuConfig("/dev/zero"); }, "/dev/zero", "not a regular file");
 }
 
 TEST(SimGpuConfig, UnknownNameListsTheBuiltins) {
