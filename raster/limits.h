@@ -32,6 +32,12 @@ inline constexpr int kBinSize = 32;
 
 // D3D11 maximum render-target dimension; larger requests are refused, never clamped.
 inline constexpr int kMaxDimension = 16384;
+// The quads one draw may collect for the shader stage. Overdraw is unbounded by the screen size
+// (200k stacked full-screen triangles at 256x256 are 3.3e9 quads), so the stream is capped and
+// a draw past it is refused rather than let run the machine out of memory: 1 GiB is a quarter
+// of the 4 GiB a run may use (cli/common_options.h kMaxRunBytes) and holds about 22M quads.
+inline constexpr std::uint64_t kMaxQuadStreamBytes = std::uint64_t{1} << 30;
+
 // Guard band in NDC units: triangles are clipped to |x|,|y| <= kGuardBandNdc * w so that
 // snapped screen coordinates stay below 2^17 px (see the edge-function bound below).
 inline constexpr double kGuardBandNdc = 7.0;

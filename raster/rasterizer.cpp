@@ -5,6 +5,7 @@
 #include "raster/rasterizer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <sstream>
@@ -53,9 +54,10 @@ class BinRasterizer {
  public:
   BinRasterizer(const std::vector<TriangleSetup>& triangles, const DrawState& state,
                 DepthStencilSurface& surface, const RasterOptions& options,
-                std::vector<QuadFragment>& quads, RasterCounters& counters)
+                std::vector<QuadFragment>& quads, std::atomic<std::size_t>& quadsCollected,
+                RasterCounters& counters)
       : triangles_(triangles), state_(state), surface_(surface), pattern_(surface.Pattern()),
-        options_(options), quads_(quads), counters_(counters),
+        options_(options), quads_(quads), quadsCollected_(quadsCollected), counters_(counters),
         width_(surface.Config().width), height_(surface.Config().height),
         samples_(surface.Config().coverageSamples) {
     int minX = kSampleOffsetMax, maxX = kSampleOffsetMin, minY = kSampleOffsetMax, maxY = kSampleOffsetMin;
@@ -174,7 +176,18 @@ class BinRasterizer {
     if (live == 0) return;
     counters_.samplesCovered += static_cast<std::uint64_t>(quad.covered.SampleCount());
     ShadeQuadDepth(tri, quad, writes);
-    if (options_.collectQuads) quads_.push_back(quad);
+    if (options_.collectQuads) Collect(quad);
+  }
+
+  // The count is shared by all bins: whether a draw exceeds the cap depends only on its total,
+  // so the error is as deterministic as the quads themselves.
+  void Collect(const QuadFragment& quad) {
+    if (quadsCollected_.fetch_add(1, std::memory_order_relaxed) >= options_.maxQuads) {
+      throw RasterError("the draw produces more than " + std::to_string(options_.maxQuads) +
+                        " quads, the most one draw may stream (kMaxQuadStreamBytes, raster/limits.h):"
+                        " overdraw too deep for this resolution");
+    }
+    quads_.push_back(quad);
   }
 
   void ShadeQuadDepth(const TriangleSetup& tri, QuadFragment& quad, TileWrites& writes) {
@@ -241,6 +254,7 @@ class BinRasterizer {
   const SamplePattern& pattern_;
   const RasterOptions& options_;
   std::vector<QuadFragment>& quads_;
+  std::atomic<std::size_t>& quadsCollected_;
   RasterCounters& counters_;
   int width_, height_, samples_;
   SampleOffset offsetMin_, offsetMax_;
@@ -306,13 +320,15 @@ const RasterResult& Rasterizer::Run(const DrawInput& input, const DrawState& sta
   BinTriangles();
   result_.quadsByBin.resize(bins_.size());
   binCounters_.assign(bins_.size(), RasterCounters{});
+  std::atomic<std::size_t> quadsCollected{0};
   tbb::parallel_for(std::size_t{0}, bins_.size(), [&](std::size_t bin) {
     const int bx = static_cast<int>(bin % static_cast<std::size_t>(result_.binsX));
     const int by = static_cast<int>(bin / static_cast<std::size_t>(result_.binsX));
     const PixelRect rect{bx * kBinSize, by * kBinSize, std::min((bx + 1) * kBinSize, config.width),
                          std::min((by + 1) * kBinSize, config.height)};
     result_.quadsByBin[bin].clear();
-    BinRasterizer(result_.triangles, state, surface, options, result_.quadsByBin[bin], binCounters_[bin])
+    BinRasterizer(result_.triangles, state, surface, options, result_.quadsByBin[bin], quadsCollected,
+                  binCounters_[bin])
         .Run(bins_[bin], rect);
   });
   for (const RasterCounters& c : binCounters_) result_.counters.Merge(c);

@@ -5,6 +5,7 @@
 // and emit the quad stream that sim/ packs into waves and fmask/ stores.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "raster/counters.h"
 #include "raster/coverage_mask.h"
 #include "raster/depth_stencil.h"
+#include "raster/limits.h"
 #include "raster/setup.h"
 
 namespace raster {
@@ -58,6 +60,8 @@ struct RasterResult {
 
 struct RasterOptions {
   bool collectQuads = true;
+  // Past this many collected quads Run throws RasterError (kMaxQuadStreamBytes).
+  std::size_t maxQuads = kMaxQuadStreamBytes / sizeof(QuadFragment);
 };
 
 // Owns the set-ups, bins and quad buffers and reuses them from draw to draw, so a frame loop
