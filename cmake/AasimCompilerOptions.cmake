@@ -15,6 +15,16 @@ if(AASIM_SANITIZE)
   target_link_options(aasim_opt INTERFACE -fsanitize=address,undefined)
 endif()
 
+if(AASIM_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "AASIM_FUZZ needs clang (libFuzzer): configure with CXX=clang++")
+  endif()
+  # Libraries get coverage instrumentation without libFuzzer's main; fuzz/ links the main.
+  target_compile_options(aasim_opt INTERFACE -fsanitize=fuzzer-no-link,address,undefined
+                                             -fno-sanitize-recover=all -fno-omit-frame-pointer -O1 -g)
+  target_link_options(aasim_opt INTERFACE -fsanitize=address,undefined)
+endif()
+
 # Every aasim library and executable links this one target.
 add_library(aasim_policy INTERFACE)
 target_link_libraries(aasim_policy INTERFACE aasim_warnings aasim_opt)
