@@ -30,6 +30,7 @@
 #include "scenes/gltf_loader.h"
 #include "scenes/scene.h"
 #include "scenes/texture.h"
+#include "scenes_test_util.h"
 
 namespace {
 
@@ -63,21 +64,7 @@ fs::path WriteText(const fs::path& path, const std::string& text) {
 
 Bytes ToBytes(const std::string& text) { return {text.begin(), text.end()}; }
 
-std::string Base64(const Bytes& bytes) {
-  static constexpr char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t left = std::min<std::size_t>(3, bytes.size() - i);
-    std::uint32_t group = static_cast<std::uint32_t>(bytes[i]) << 16;
-    if (left > 1) group |= static_cast<std::uint32_t>(bytes[i + 1]) << 8;
-    if (left > 2) group |= bytes[i + 2];
-    for (std::size_t k = 0; k < 4; ++k) {
-      text += k <= left ? kAlphabet[(group >> (18 - 6 * k)) & 63u] : '=';
-    }
-  }
-  return text;
-}
+using scenes_test::Base64;
 
 template <typename T>
 void Append(Bytes& bytes, const std::vector<T>& values) {

@@ -25,6 +25,7 @@
 
 #include "scenes/scene.h"
 #include "scenes/texture.h"
+#include "scenes_test_util.h"
 
 // Readable failure output for vectors compared with EXPECT_EQ (found by argument lookup).
 // Static: the suite is one binary and other test files may print glm types their own way.
@@ -49,21 +50,7 @@ constexpr int kUnsignedInt = 5125;
 constexpr int kFloat = 5126;
 const fs::path kGltf2Models = fs::path(AASIM_TESTMODELS_DIR) / "glTF2";
 
-std::string Base64(const std::vector<unsigned char>& bytes) {
-  static constexpr char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t left = std::min<std::size_t>(3, bytes.size() - i);
-    std::uint32_t group = static_cast<std::uint32_t>(bytes[i]) << 16;
-    if (left > 1) group |= static_cast<std::uint32_t>(bytes[i + 1]) << 8;
-    if (left > 2) group |= bytes[i + 2];
-    for (std::size_t k = 0; k < 4; ++k) {
-      text += k <= left ? kAlphabet[(group >> (18 - 6 * k)) & 63u] : '=';
-    }
-  }
-  return text;
-}
+using scenes_test::Base64;
 
 // Built with append: GCC 12 warns falsely (-Wrestrict) on "literal" + temporary string.
 std::string JoinJson(const std::vector<std::string>& items) {
