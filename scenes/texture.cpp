@@ -52,6 +52,28 @@ int EncodedLength(std::span<const std::uint8_t> encoded, const std::string& name
   return static_cast<int>(encoded.size());
 }
 
+// stb_image grows its IDAT buffer to whatever length a chunk header declares before it reads
+// the chunk, so a 74-byte PNG could make it allocate hundreds of MiB (found by fuzz/image).
+// Every chunk must fit in the bytes that are really there.
+void CheckPngChunkLengths(std::span<const std::uint8_t> encoded, const std::string& name) {
+  constexpr std::size_t kChunkOverhead = 12;  // length, type, CRC
+  std::size_t offset = kPngSignature.size();
+  while (encoded.size() - offset >= kChunkOverhead) {
+    const std::uint32_t length = std::uint32_t{encoded[offset]} << 24 | std::uint32_t{encoded[offset + 1]} << 16 |
+                                 std::uint32_t{encoded[offset + 2]} << 8 | std::uint32_t{encoded[offset + 3]};
+    const std::size_t left = encoded.size() - offset - kChunkOverhead;
+    if (length > left) {
+      throw SceneError(name + ": cannot decode: PNG chunk at byte " + std::to_string(offset) + " declares " +
+                       std::to_string(length) + " bytes, more than the " + std::to_string(left) +
+                       " the file holds after it");
+    }
+    const bool end = std::equal(encoded.begin() + static_cast<std::ptrdiff_t>(offset + 4),
+                                encoded.begin() + static_cast<std::ptrdiff_t>(offset + 8), "IEND");
+    if (end) return;
+    offset += kChunkOverhead + length;
+  }
+}
+
 std::string FailureReason() {
   const char* reason = stbi_failure_reason();
   return reason == nullptr ? "unknown reason" : reason;
@@ -100,6 +122,7 @@ ImageSize ReadImageSize(std::span<const std::uint8_t> encoded, const std::string
 Texture DecodeImage(std::span<const std::uint8_t> encoded, std::string name,
                     ColourEncoding encoding) {
   const ImageSize size = ReadImageSize(encoded, name);
+  if (SniffImageFormat(encoded) == ImageFormat::Png) CheckPngChunkLengths(encoded, name);
   const int length = EncodedLength(encoded, name);
   const bool wide = stbi_is_16_bit_from_memory(encoded.data(), length) != 0;
   int width = 0;
