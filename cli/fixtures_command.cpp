@@ -196,7 +196,8 @@ Json FixtureJson(const fmask::FixtureData& data) {
         {"clear_depth", fmask::kFixtureClearDepth},
         {"depth_func", "less"},
         {"cull", "none"},
-        {"max_zplanes", fmask::kFixtureMaxZPlanes}}},
+        {"max_zplanes", fmask::kFixtureMaxZPlanes},
+        {"hiz", fmask::FixtureDrawState().depth.hiZEnable}}},
       {"triangles", TrianglesJson(fixtureCase)},
   };
 }

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 
 #include <ImfChannelList.h>
@@ -80,6 +82,50 @@ void WriteExr(const std::filesystem::path& path, int width, int height,
     file.writePixels(height);
   } catch (const std::exception& error) {
     throw OutputError(path.string() + ": cannot write EXR: " + error.what());
+  }
+}
+
+void WriteUintExr(const std::filesystem::path& path, int width, int height,
+                  std::span<const std::string> channelNames, int stripRows,
+                  const UintExrStripFill& fill) {
+  const std::size_t rowValues = PixelCount(width, height) / static_cast<std::size_t>(height);
+  if (stripRows < 1) throw std::invalid_argument("WriteUintExr: strips need at least one row");
+  Imf::Header header(width, height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const std::string& name : channelNames) header.channels().insert(name, Imf::Channel(Imf::UINT));
+  auto fail = [&](const std::exception& error) {
+    return OutputError(path.string() + ": cannot write EXR: " + error.what());
+  };
+  std::optional<Imf::OutputFile> file;
+  try {
+    file.emplace(path.c_str(), header);
+  } catch (const std::exception& error) {
+    throw fail(error);
+  }
+  std::vector<std::vector<std::uint32_t>> strip(channelNames.size());
+  const std::size_t yStride = sizeof(std::uint32_t) * rowValues;
+  for (int firstRow = 0; firstRow < height; firstRow += stripRows) {
+    const int rows = std::min(stripRows, height - firstRow);
+    for (std::vector<std::uint32_t>& channel : strip) channel.assign(rowValues * rows, 0u);
+    fill(firstRow, rows, strip);
+    Imf::FrameBuffer frameBuffer;
+    for (std::size_t c = 0; c < strip.size(); ++c) {
+      if (strip[c].size() != rowValues * rows) {
+        throw std::invalid_argument("WriteUintExr: channel " + channelNames[c] + " does not match the strip");
+      }
+      // OpenEXR addresses pixel (x, y) as base + x * xStride + y * yStride with y counted from
+      // the top of the image, so the strip's base lies firstRow rows before its data; integer
+      // arithmetic keeps that out-of-array address from being formed as a pointer offset.
+      const std::uintptr_t data = reinterpret_cast<std::uintptr_t>(strip[c].data());
+      char* base = reinterpret_cast<char*>(data - static_cast<std::uintptr_t>(firstRow) * yStride);
+      frameBuffer.insert(channelNames[c], Imf::Slice(Imf::UINT, base, sizeof(std::uint32_t), yStride));
+    }
+    try {
+      file->setFrameBuffer(frameBuffer);
+      file->writePixels(rows);
+    } catch (const std::exception& error) {
+      throw fail(error);
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,5 +30,18 @@ struct ExrChannel {
 // One 32-bit float channel per entry, ZIP compression. Throws OutputError naming the path.
 void WriteExr(const std::filesystem::path& path, int width, int height,
               std::span<const ExrChannel> channels);
+
+// Fills one strip of a UINT image: strip[c][(y - firstRow) * width + x] for channel c and every
+// row y in [firstRow, firstRow + rows).
+using UintExrStripFill =
+    std::function<void(int firstRow, int rows, std::vector<std::vector<std::uint32_t>>& strip)>;
+
+// 32-bit unsigned integer channels (OpenEXR UINT), ZIP compression: for ids and masks, which a
+// float channel could not hold exactly. Written `stripRows` scanlines at a time from `fill`, so
+// only one strip is ever in memory however many channels there are. Throws OutputError naming
+// the path.
+void WriteUintExr(const std::filesystem::path& path, int width, int height,
+                  std::span<const std::string> channelNames, int stripRows,
+                  const UintExrStripFill& fill);
 
 }  // namespace cli

@@ -3,6 +3,7 @@
 
 #include "cli/raster_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -85,6 +86,42 @@ void WriteDepthExr(const std::filesystem::path& path, const raster::DepthStencil
   WriteExr(path, surface.Config().width, surface.Config().height, channels);
 }
 
+// samples.exr: per coverage sample s, `coverage.s{s}` is 1 where some primitive covered the
+// sample (before depth and stencil) and `primitive.s{s}` the id of the primitive that last
+// passed depth there (the visible one), kNoPrimitive where none did. Written one row of bins
+// at a time: those bins own exactly the strip's pixels, so they fill it in parallel and the
+// per-sample layers never exist for the whole image at once.
+void WriteSamplesExr(const std::filesystem::path& path, const raster::RasterResult& result,
+                     int width, int height, int samples) {
+  std::vector<std::string> names;
+  for (int s = 0; s < samples; ++s) {
+    names.push_back("coverage.s" + std::to_string(s));
+    names.push_back("primitive.s" + std::to_string(s));
+  }
+  const auto fill = [&](int firstRow, int /*rows*/, std::vector<std::vector<std::uint32_t>>& strip) {
+    for (int s = 0; s < samples; ++s) {
+      std::fill(strip[2 * s + 1].begin(), strip[2 * s + 1].end(), kNoPrimitive);
+    }
+    const std::size_t binRow = static_cast<std::size_t>(firstRow / raster::kBinSize);
+    const std::size_t binsX = static_cast<std::size_t>(result.binsX);
+    tbb::parallel_for(std::size_t{0}, binsX, [&](std::size_t bx) {
+      for (const raster::QuadFragment& quad : result.quadsByBin[binRow * binsX + bx]) {
+        for (int p = 0; p < raster::kQuadPixels; ++p) {
+          if (quad.covered.Pixel(p) == 0) continue;  // also every pixel outside the image
+          const std::size_t pixel =
+              static_cast<std::size_t>(quad.y + (p >> 1) - firstRow) * static_cast<std::size_t>(width) +
+              static_cast<std::size_t>(quad.x + (p & 1));
+          for (int s = 0; s < samples; ++s) {
+            if (quad.covered.Sample(p, s)) strip[2 * s][pixel] = 1u;
+            if (quad.passed.Sample(p, s)) strip[2 * s + 1][pixel] = quad.primitiveId;
+          }
+        }
+      }
+    });
+  };
+  WriteUintExr(path, width, height, names, raster::kBinSize, fill);
+}
+
 // A ratio computed at report time; null when the denominator is zero (style.md habit 15).
 nlohmann::ordered_json Ratio(double numerator, double denominator) {
   return denominator == 0.0 ? nlohmann::ordered_json(nullptr)
@@ -158,6 +195,8 @@ std::vector<std::filesystem::path> WriteOutputs(OutputDir& dir, const RasterComm
   WritePng(dir.Stage("primitives.png"), options.width, options.height, 3,
            PrimitiveImage(run.ownership));
   WriteDepthExr(dir.Stage("depth.exr"), surface, run.ownership);
+  WriteSamplesExr(dir.Stage("samples.exr"), run.result, options.width, options.height,
+                  options.samples);
   if (run.eqaa) WriteEqaaOutputs(dir, options, *run.eqaa);
   WriteJson(dir.Stage("counters.json"), CountersDocument(options, run));
   return dir.Commit("counters.json");

@@ -22,6 +22,7 @@ constexpr Rgba8 kPalette[] = {
     {230, 25, 75, 255},  {60, 180, 75, 255},   {255, 225, 25, 255}, {0, 130, 200, 255},
     {245, 130, 48, 255}, {145, 30, 180, 255},  {70, 240, 240, 255}, {240, 50, 230, 255},
     {210, 245, 60, 255}, {250, 190, 212, 255}, {0, 128, 128, 255},  {170, 110, 40, 255},
+    {128, 0, 0, 255},    {0, 0, 128, 255},     {128, 128, 0, 255},
 };
 
 constexpr std::string_view kFixturePatterns[] = {"standard", "eqaa"};
@@ -49,15 +50,27 @@ FixtureCase EdgeCase(std::string name, std::string exercises, double dirX, doubl
   return Case(std::move(name), std::move(exercises), {Triangle(a, b, c, 0)});
 }
 
+// Three flat triangles at the bottom of the tile, each with its own plane (depths in odd 32nds,
+// unlike any band of the cascade) and clear of the rows above y = 4: with the clear depth still referenced by the rows above them, they fill
+// the tile's four plane slots (docs/raster.md), so the next triangle with a new plane that
+// writes depth decompresses the tile whatever the sample pattern.
+std::vector<FixtureTriangle> FullPlaneTable(int firstColour) {
+  return {Triangle({0.25, 4.75, 0.96875f}, {3.75, 4.75, 0.96875f}, {0.25, 7.75, 0.96875f}, firstColour),
+          Triangle({4.25, 4.75, 0.90625f}, {7.75, 4.75, 0.90625f}, {7.75, 7.75, 0.90625f}, firstColour + 1),
+          Triangle({2.0, 7.875, 0.84375f}, {4.0, 7.875, 0.84375f}, {3.0, 5.875, 0.84375f}, firstColour + 2)};
+}
+
 // Horizontal bands 1/16 px apart, each nearer than the last: a pixel of the band rows sees up
-// to 12 fragments, more than any F, and 12 Z planes, more than the tile keeps.
+// to 12 fragments, more than any F. The first band finds the plane table full and
+// decompresses the tile, so the cascade runs on per-sample depth: unanchored samples are
+// tested against their anchors from then on.
 FixtureCase EvictionCascade() {
   constexpr int kBands = 12;
   FixtureCase cascade = Case("eviction-cascade",
-                             "12 overlapping bands drawn back to front through one pixel row: "
-                             "repeated evictions (UNKNOWN samples) and a Z-plane tile "
-                             "decompression",
-                             {});
+                             "three triangles fill the Z-plane table, then 12 overlapping bands "
+                             "drawn back to front through one pixel row: the first band "
+                             "decompresses the tile, then repeated evictions (UNKNOWN samples)",
+                             FullPlaneTable(12));
   for (int band = 0; band < kBands; ++band) {
     const double top = 2.0 + band / 16.0;
     const float z = static_cast<float>(15 - band) / 16.0f;
@@ -65,6 +78,46 @@ FixtureCase EvictionCascade() {
         Triangle({-20.0, top, z}, {28.0, top, z}, {4.0, top + 0.375, z}, band));
   }
   return cascade;
+}
+
+// A full-tile triangle sets the tile's hi-Z bounds to its depth, four nearer ones fill and
+// then overflow the plane table (the tile decompresses), and a far triangle behind all of them
+// is rejected by hi-Z for the whole tile: it never reaches the colour block, so the untestable
+// samples it covers keep their fragments (docs/eqaa.md, step 2).
+FixtureCase HiZRejected() {
+  return Case("hiz-rejected",
+              "a far triangle behind a decompressed tile: hi-Z rejects the tile, so the colour "
+              "block never sees it and no untestable sample is discarded",
+              {Triangle({-20.0, -4.0, 0.25f}, {30.0, -4.0, 0.25f}, {5.0, 30.0, 0.25f}, 9),
+               Triangle({0.25, 0.25, 0.1875f}, {3.75, 0.25, 0.1875f}, {0.25, 3.75, 0.1875f}, 0),
+               Triangle({4.25, 0.25, 0.125f}, {7.75, 0.25, 0.125f}, {7.75, 3.75, 0.125f}, 1),
+               Triangle({0.25, 4.25, 0.0625f}, {0.25, 7.75, 0.0625f}, {3.75, 7.75, 0.0625f}, 2),
+               Triangle({7.75, 4.25, 0.03125f}, {7.75, 7.75, 0.03125f}, {4.25, 7.75, 0.03125f}, 3),
+               Triangle({1.03125, 2.03125, 0.75f}, {6.96875, 2.03125, 0.75f}, {4.0, 7.0, 0.75f}, 4)});
+}
+
+// Three planes plus the clear fill the table; a near wall covers the lower half of each pixel
+// of the quad at (4, 4) (two coplanar stripes, one plane). The last triangle covers that quad
+// from its top-left pixel: its first depth write, in pixel (4, 4), decompresses the tile, so
+// that pixel's samples were tested exactly and the quad's other three pixels test their
+// unanchored samples against their nearest anchor (docs/raster.md).
+FixtureCase DecompressInQuad() {
+  auto stripe = [](double top, double bottom, int colour) {
+    return std::vector<FixtureTriangle>{
+        Triangle({3.5, top, 0.25f}, {6.5, top, 0.25f}, {6.5, bottom, 0.25f}, colour),
+        Triangle({3.5, top, 0.25f}, {6.5, bottom, 0.25f}, {3.5, bottom, 0.25f}, colour)};
+  };
+  std::vector<FixtureTriangle> triangles{
+      Triangle({0.25, 0.25, 0.625f}, {3.75, 0.25, 0.625f}, {0.25, 2.75, 0.625f}, 0),
+      Triangle({4.25, 0.25, 0.6875f}, {7.75, 0.25, 0.6875f}, {7.75, 2.75, 0.6875f}, 1)};
+  for (const FixtureTriangle& t : stripe(4.53125, 5.03125, 3)) triangles.push_back(t);
+  for (const FixtureTriangle& t : stripe(5.53125, 6.03125, 3)) triangles.push_back(t);
+  triangles.push_back(Triangle({4.03125, 4.03125, 0.5f}, {8.0, 4.03125, 0.5f}, {4.03125, 8.0, 0.5f}, 5));
+  return Case("decompress-in-quad",
+              "the clear and three planes fill the table; the last triangle decompresses the "
+              "tile in the first pixel of a quad, so the quad's other pixels test unanchored "
+              "samples against their anchors",
+              std::move(triangles));
 }
 
 FixtureCase DepthOrder(std::string name, std::string exercises, bool frontFirst) {
@@ -104,7 +157,7 @@ raster::SamplePattern FixturePattern(std::string_view name, int samples) {
   return raster::MakeBuiltinPattern(name, samples);
 }
 
-raster::RasterResult RasterizeCase(const FixtureCase& fixtureCase,
+raster::RasterResult RasterizeCase(const FixtureCase& fixtureCase, const raster::DrawState& state,
                                    raster::DepthStencilSurface& depth) {
   std::vector<glm::vec4> clip;
   std::vector<std::uint32_t> indices;
@@ -116,9 +169,6 @@ raster::RasterResult RasterizeCase(const FixtureCase& fixtureCase,
                         static_cast<float>(1.0 - v.y / height * 2.0), v.z, 1.0f);
     }
   }
-  raster::DrawState state;
-  state.cull = raster::CullMode::None;
-  state.depth.func = raster::CompareFunc::Less;
   return raster::Rasterize({clip, indices, 0}, state, depth);
 }
 
@@ -173,6 +223,8 @@ std::vector<FixtureCase> CanonicalCases() {
       DepthOrder("front-to-back", "a near triangle, then an overlapping far one (depth-rejected)",
                  true),
       DepthOrder("back-to-front", "the same two triangles, far one first (overdrawn)", false),
+      HiZRejected(),
+      DecompressInQuad(),
   };
   return cases;
 }
@@ -205,8 +257,17 @@ std::vector<FixtureSpec> CanonicalFixtureSet() {
   return set;
 }
 
+raster::DrawState FixtureDrawState() {
+  raster::DrawState state;
+  state.cull = raster::CullMode::None;
+  state.depth.func = raster::CompareFunc::Less;
+  state.depth.hiZEnable = true;
+  return state;
+}
+
 FixtureData DeriveFixture(const FixtureCase& fixtureCase, const EqaaConfig& config,
-                          std::string_view patternName, const ArbitrationPolicy& policy) {
+                          std::string_view patternName, const ArbitrationPolicy& policy,
+                          const raster::DrawState& state) {
   ValidateEqaaConfig(config);
   raster::SamplePattern pattern = FixturePattern(patternName, config.coverageSamples);
   raster::DepthStencilSurface depth({.width = fixtureCase.width,
@@ -216,17 +277,20 @@ FixtureData DeriveFixture(const FixtureCase& fixtureCase, const EqaaConfig& conf
                                      .maxZPlanes = kFixtureMaxZPlanes,
                                      .clearDepth = kFixtureClearDepth},
                                     pattern);
-  const raster::RasterResult result = RasterizeCase(fixtureCase, depth);
+  const raster::RasterResult result = RasterizeCase(fixtureCase, state, depth);
   EqaaSurface surface(fixtureCase.width, fixtureCase.height, config, policy, InitialState::Cleared,
                       ToColour(kFixtureClearColour));
-  surface.UpdateAll(result, [&](const raster::QuadFragment& quad, int) {
-    return ToColour(fixtureCase.triangles[quad.primitiveId].colour);
-  });
+  const FragmentCounters fragmentCounters =
+      surface.UpdateAll(result, [&](const raster::QuadFragment& quad, int) {
+        return ToColour(fixtureCase.triangles[quad.primitiveId].colour);
+      });
   FixtureData data{.spec = {config, std::string(patternName), fixtureCase.name, policy.name},
                    .width = fixtureCase.width,
                    .height = fixtureCase.height,
                    .layout = FmaskLayout::For(config.coverageSamples, config.fragments),
-                   .pattern = std::move(pattern)};
+                   .pattern = std::move(pattern),
+                   .rasterCounters = result.counters,
+                   .fragmentCounters = fragmentCounters};
   ExtractFiles(surface, depth, data);
   return data;
 }

@@ -11,6 +11,8 @@
 
 #include "fmask/eqaa_surface.h"
 #include "fmask/layout.h"
+#include "raster/counters.h"
+#include "raster/rasterizer.h"
 #include "raster/sample_pattern.h"
 
 namespace fmask {
@@ -54,6 +56,8 @@ std::vector<FixtureSpec> CanonicalFixtureSet();
 inline constexpr int kFixtureMaxZPlanes = 4;
 inline constexpr float kFixtureClearDepth = 1.0f;
 inline constexpr std::array<std::uint8_t, 4> kFixtureClearColour{0, 0, 0, 255};
+// No culling, depth test LESS with writes, hi-Z on, no stencil.
+raster::DrawState FixtureDrawState();
 
 // The files of one fixture, each a row-major array over pixels (top row first), little-endian.
 struct FixtureData {
@@ -66,13 +70,19 @@ struct FixtureData {
   std::vector<std::uint8_t> depth{};    // per pixel, per sample 0..S-1: float32 tested depth
   std::vector<std::uint8_t> decoded{};  // per pixel, per sample: RGBA8 colour FetchSample reads
   std::vector<std::uint8_t> resolve{};  // per pixel: 4 x float32 RGBA, the box resolve
+  // What happened on the way (not written to the files; tests check that each case exercises
+  // the rule it is there for).
+  raster::RasterCounters rasterCounters{};
+  FragmentCounters fragmentCounters{};
 };
 
-// Rasterizes the case (cull none, depth LESS, kFixtureMaxZPlanes) into a cleared EQAA surface
-// with the named pattern and policy and extracts the files. Deterministic. Throws
-// std::invalid_argument on an illegal config, pattern or policy name.
+// Rasterizes the case (FixtureDrawState, kFixtureMaxZPlanes) into a cleared EQAA surface with
+// the named pattern and policy and extracts the files. Deterministic. Throws
+// std::invalid_argument on an illegal config, pattern or policy name. `state` exists so tests
+// can show what a case depends on (e.g. hi-Z off); fixtures always use FixtureDrawState().
 FixtureData DeriveFixture(const FixtureCase& fixtureCase, const EqaaConfig& config,
-                          std::string_view patternName, const ArbitrationPolicy& policy);
+                          std::string_view patternName, const ArbitrationPolicy& policy,
+                          const raster::DrawState& state = FixtureDrawState());
 FixtureData DeriveFixture(const FixtureSpec& spec);
 
 // 64-bit FNV-1a (offset basis 0xcbf29ce484222325, prime 0x100000001b3), the manifest checksum.

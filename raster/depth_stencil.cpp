@@ -128,7 +128,6 @@ float DepthStencilSurface::StoredDepth(const ZTile& tile, int pixel, int quadPix
     return anchorDepth_[pixel * config_.depthSamples + nearestAnchor_[quadPixel][sample]];
   }
   const std::uint8_t plane = planeIndex_[pixel * config_.coverageSamples + sample];
-  if (plane == kClearPlane) return config_.clearDepth;
   const SampleOffset offset = pattern_.Offset(quadPixel, sample);
   return tile.planes[plane].Evaluate(SampleX(x, offset.x), SampleY(y, offset.y));
 }
@@ -276,10 +275,26 @@ void DepthStencilSurface::WriteDepth(int x, int y, SampleMask passed, const ZPla
 // decompressed because the plane limit was reached.
 int DepthStencilSurface::PlaneSlot(int tx, int ty, const ZPlane& plane, RasterCounters& counters) {
   ZTile& tile = tiles_[TileIndex(tx, ty)];
+  if (tile.state == ZTileState::Cleared) {
+    // hw-facts §5.1: ZMask 0 marks a wholly cleared tile, and a written tile stores planes only,
+    // so from the first write on the clear depth is a plane like any other: it takes slot 0,
+    // every sample points at it, and it counts against the limit while a sample still does.
+    if (config_.maxZPlanes == 0) {
+      DecompressTile(tx, ty);
+      ++counters.zPlaneDecompressions;
+      return -1;
+    }
+    tile.planes[0] = ZPlane{0.0, 0.0, static_cast<double>(config_.clearDepth)};
+    tile.planeCount = 1;
+    tile.state = ZTileState::Compressed;
+    ForEachTilePixel(tx, ty, [&](int x, int y) {
+      std::fill_n(&planeIndex_[PixelIndex(x, y) * config_.coverageSamples], config_.coverageSamples, 0);
+    });
+  }
   for (int i = tile.planeCount - 1; i >= 0; --i) {
     if (tile.planes[i] == plane) return i;
   }
-  if (tile.planeCount >= config_.maxZPlanes && tile.planeCount > 0) {
+  if (tile.planeCount >= config_.maxZPlanes) {
     const int before = tile.planeCount;
     CompactPlanes(tx, ty);
     if (tile.planeCount < before) ++counters.zPlaneCompactions;
@@ -289,38 +304,31 @@ int DepthStencilSurface::PlaneSlot(int tx, int ty, const ZPlane& plane, RasterCo
     ++counters.zPlaneDecompressions;
     return -1;
   }
-  if (tile.state == ZTileState::Cleared) {
-    ForEachTilePixel(tx, ty, [&](int x, int y) {
-      std::fill_n(&planeIndex_[PixelIndex(x, y) * config_.coverageSamples], config_.coverageSamples, kClearPlane);
-    });
-  }
   tile.planes[tile.planeCount] = plane;
-  tile.state = ZTileState::Compressed;
   return tile.planeCount++;
 }
 
+// Drops every plane no sample of the tile references, keeping the order of the others. The
+// samples the current write is about to overwrite still reference their old planes here.
 void DepthStencilSurface::CompactPlanes(int tx, int ty) {
   ZTile& tile = tiles_[TileIndex(tx, ty)];
+  constexpr std::uint8_t kUnreferenced = 0xFF;
   std::array<std::uint8_t, kMaxZPlanesPerTile> remap;
-  remap.fill(kClearPlane);
+  remap.fill(kUnreferenced);
   ForEachTilePixel(tx, ty, [&](int x, int y) {
     const std::uint8_t* idx = &planeIndex_[PixelIndex(x, y) * config_.coverageSamples];
-    for (int s = 0; s < config_.coverageSamples; ++s) {
-      if (idx[s] != kClearPlane) remap[idx[s]] = 0;
-    }
+    for (int s = 0; s < config_.coverageSamples; ++s) remap[idx[s]] = 0;
   });
   std::uint8_t kept = 0;
   for (int i = 0; i < tile.planeCount; ++i) {
-    if (remap[i] == kClearPlane) continue;
+    if (remap[i] == kUnreferenced) continue;
     remap[i] = kept;
     tile.planes[kept++] = tile.planes[i];
   }
   tile.planeCount = kept;
   ForEachTilePixel(tx, ty, [&](int x, int y) {
     std::uint8_t* idx = &planeIndex_[PixelIndex(x, y) * config_.coverageSamples];
-    for (int s = 0; s < config_.coverageSamples; ++s) {
-      if (idx[s] != kClearPlane) idx[s] = remap[idx[s]];
-    }
+    for (int s = 0; s < config_.coverageSamples; ++s) idx[s] = remap[idx[s]];
   });
 }
 

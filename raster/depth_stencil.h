@@ -3,15 +3,20 @@
 // compression model, hi-Z per-tile bounds, per-pixel stencil and the hi-stencil pretests
 // (hw-facts §5). It owns the surface memory; the rasterizer calls it per tile and per pixel.
 //
-// Depth model (hw-facts §5.2, DESIGN.md "The EQAA surface"):
+// Depth model (hw-facts §5.1, §5.2, DESIGN.md "The EQAA surface"; docs/raster.md has the rules
+// in full):
 //  * A tile starts Cleared (every sample = clear depth; HTILE ZMask 0).
-//  * While it holds at most maxZPlanes planes it is Compressed: each coverage sample (all S, not
-//    only the Z anchors) names the plane that last wrote it, so depth is known exactly at every
-//    coverage sample ("up to 16x quality").
-//  * A triangle that would need one plane more first drops planes no sample references any more
-//    (a compaction); if the tile is still full it is Decompressed for good: the Z anchored
-//    samples get their depth evaluated from the planes, unanchored samples lose theirs and from
-//    then on test against their nearest anchor (hw-facts §5.2, SI-STATE comment).
+//  * Its first depth write makes it Compressed. A written tile stores planes only (§5.1), so the
+//    clear depth becomes plane 0 (z = clear depth everywhere) and every sample points at it;
+//    from then on it is a plane like any other. Each coverage sample (all S, not only the Z
+//    anchors) names the plane that last wrote it, so depth is known exactly at every coverage
+//    sample ("up to 16x quality"). A tile holds at most maxZPlanes planes, the clear included
+//    while some sample references it.
+//  * A write that needs one plane more first drops planes no sample references any more (a
+//    compaction); if the tile is still full it is Decompressed for good: the Z anchored samples
+//    get their depth evaluated from the planes, unanchored samples lose theirs and from then on
+//    test against their nearest anchor (hw-facts §5.2, SI-STATE comment). This happens inside
+//    the write of one pixel, so later pixels of the same quad already see the decompressed tile.
 //  * hi-Z keeps conservative min/max bounds per tile (HTILE zmin/zmax, §5.1).
 
 #include <array>
@@ -160,13 +165,11 @@ class DepthStencilSurface {
   void DecompressTile(int tx, int ty);
   void RefreshHiStencil(int tx, int ty);
 
-  static constexpr std::uint8_t kClearPlane = 0xFF;
-
   DepthSurfaceConfig config_;
   SamplePattern pattern_;
   int tilesX_ = 0, tilesY_ = 0;
   std::vector<ZTile> tiles_;
-  std::vector<std::uint8_t> planeIndex_;  // [pixel * S + sample], kClearPlane = clear depth
+  std::vector<std::uint8_t> planeIndex_;  // [pixel * S + sample], valid in Compressed tiles
   std::vector<float> anchorDepth_;        // [pixel * Z + anchor], valid in Decompressed tiles
   std::vector<std::uint8_t> stencil_;     // [pixel]
   std::array<std::array<std::uint8_t, kMaxCoverageSamples>, kQuadPixels> nearestAnchor_{};

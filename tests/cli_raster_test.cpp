@@ -1,4 +1,4 @@
-// `aasim raster` end to end: the real binary writes its four outputs on good input (and the
+// `aasim raster` end to end: the real binary writes its five outputs on good input (and the
 // EQAA outputs with --fragments), and every bad input gives a non-zero exit, one stderr line
 // naming the input and no output files. Also the in-process pieces the outputs are built from
 // (sample ownership replay, primitive colours, the FMASK preview, the trace formats).
@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -16,20 +17,24 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
 #include "cli/counters_json.h"
 #include "cli/eqaa_output.h"
 #include "cli/eqaa_trace.h"
+#include "cli/frame_input.h"
 #include "cli/image_io.h"
 #include "cli/ownership.h"
 #include "cli/raster_options.h"
 #include "fmask/eqaa_surface.h"
 #include "raster/counters.h"
 #include "raster/rasterizer.h"
+#include "scenes/scene.h"
 #include "cli_test_util.h"
 
 namespace {
@@ -119,14 +124,14 @@ std::vector<std::string> SmallRun(const fs::path& out) {
           "--samples", "4",       "--out",           out.string()};
 }
 
-TEST_F(CliRasterTest, WritesTheFourOutputsAndCountersMatchTheFieldTable) {
+TEST_F(CliRasterTest, WritesTheFiveOutputsAndCountersMatchTheFieldTable) {
   const fs::path out = scratch_ / "out";
   const CommandResult run = RunAasim(SmallRun(out), scratch_);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(run.err, "");
   EXPECT_NE(run.out.find("builtin:default"), std::string::npos) << run.out;
   EXPECT_EQ(FilesIn(out), (std::vector<std::string>{"counters.json", "coverage.png", "depth.exr",
-                                                    "primitives.png"}));
+                                                    "primitives.png", "samples.exr"}));
 
   const nlohmann::ordered_json json =
       nlohmann::ordered_json::parse(ReadText(out / "counters.json"));
@@ -165,7 +170,7 @@ TEST_F(CliRasterTest, OutputsAreIdenticalWithOneAndTwoThreads) {
   two.insert(two.end(), {"--threads", "2"});
   ASSERT_EQ(RunAasim(one, scratch_).exitCode, 0);
   ASSERT_EQ(RunAasim(two, scratch_).exitCode, 0);
-  for (const char* file : {"coverage.png", "primitives.png", "depth.exr"}) {
+  for (const char* file : {"coverage.png", "primitives.png", "depth.exr", "samples.exr"}) {
     EXPECT_EQ(ReadText(scratch_ / "one" / file), ReadText(scratch_ / "two" / file)) << file;
   }
   const auto counters = [&](const char* dir) {
@@ -185,6 +190,119 @@ TEST_F(CliRasterTest, RendersAValidGltfFile) {
   const nlohmann::json json = nlohmann::json::parse(ReadText(out / "counters.json"));
   EXPECT_EQ(json["counters"]["triangles/in"], 1);
   EXPECT_GT(json["counters"]["samples/covered"].get<std::uint64_t>(), 0u);
+}
+
+// Every channel of an EXR file that stores 32-bit unsigned integers, by name; fails the test
+// on a channel of another type.
+std::map<std::string, std::vector<std::uint32_t>> ReadUintExrChannels(const fs::path& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  const std::size_t width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
+  const std::size_t height = static_cast<std::size_t>(window.max.y - window.min.y + 1);
+  std::map<std::string, std::vector<std::uint32_t>> channels;
+  Imf::FrameBuffer frameBuffer;
+  for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+    EXPECT_EQ(it.channel().type, Imf::UINT) << it.name();
+    std::vector<std::uint32_t>& values = channels[it.name()];
+    values.resize(width * height);
+    frameBuffer.insert(it.name(), Imf::Slice(Imf::UINT, reinterpret_cast<char*>(values.data()),
+                                             sizeof(std::uint32_t), sizeof(std::uint32_t) * width));
+  }
+  file.setFrameBuffer(frameBuffer);
+  file.readPixels(window.min.y, window.max.y);
+  return channels;
+}
+
+// Which samples a triangle covers, from the documents alone: vertices snapped to 1/256 px
+// (round half away from zero), reoriented so the doubled area is positive (y down), integer
+// edge functions with the top-left rule (docs/raster.md), samples at the standard 4x offsets
+// of hw-facts §4.1: (-2,-6) (6,-2) (-6,2) (2,6) in 1/16 px from the pixel centre.
+struct SnappedTriangle {
+  std::array<std::array<std::int64_t, 2>, 3> v;
+};
+
+SnappedTriangle Snap(const std::array<glm::vec4, 3>& clip, int width, int height) {
+  SnappedTriangle t{};
+  for (int i = 0; i < 3; ++i) {
+    const double invW = 1.0 / static_cast<double>(clip[i].w);
+    const double ndcX = static_cast<double>(clip[i].x) * invW, ndcY = static_cast<double>(clip[i].y) * invW;
+    t.v[i] = {std::llround((ndcX * 0.5 + 0.5) * width * 256.0), std::llround((0.5 - ndcY * 0.5) * height * 256.0)};
+  }
+  return t;
+}
+
+bool Covers(SnappedTriangle t, std::int64_t x, std::int64_t y) {
+  auto cross = [](auto a, auto b, auto c) { return (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]); };
+  if (cross(t.v[0], t.v[1], t.v[2]) < 0) std::swap(t.v[1], t.v[2]);
+  for (int e = 0; e < 3; ++e) {
+    const auto& p = t.v[(e + 1) % 3];
+    const auto& q = t.v[(e + 2) % 3];
+    const std::int64_t dx = q[0] - p[0], dy = q[1] - p[1];
+    const std::int64_t value = -dy * (x - p[0]) + dx * (y - p[1]);
+    const bool topLeft = dy < 0 || (dy == 0 && dx > 0);
+    if (value < 0 || (value == 0 && !topLeft)) return false;
+  }
+  return true;
+}
+
+// samples.exr holds, per sample, the coverage (before depth) and the visible primitive as
+// 32-bit unsigned integers. Two triangles sharing an edge: every sample inside the pair is
+// covered by exactly one, and its id is that triangle's.
+TEST_F(CliRasterTest, SamplesExrHoldsPerSampleCoverageAndPrimitiveIds) {
+  // Odd sizes: the last quad column and row stick out; 49 rows make two strips of 32-row bins,
+  // and the pair, framed in the middle of the view, reaches into the second.
+  constexpr int kWidth = 53, kHeight = 49;
+  const std::vector<float> positions{-1.0f, -0.8f, 0.0f, 1.2f, -1.0f, 0.0f,
+                                     0.9f,  1.0f,  0.0f, -1.1f, 0.7f,  0.0f};
+  const std::vector<std::uint32_t> indices{0, 1, 2, 0, 2, 3};
+  const fs::path scenePath = WriteFile(scratch_ / "pair.gltf", TriangleGltf(positions, indices));
+  const fs::path out = scratch_ / "out";
+  const CommandResult run =
+      RunAasim({"raster", "--scene", scenePath.string(), "--width", std::to_string(kWidth),
+                "--height", std::to_string(kHeight), "--samples", "4", "--pattern", "standard",
+                "--cull", "none", "--out", out.string()},
+               scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+
+  // The clip positions the command rasterized, from the same scene and camera code.
+  const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
+  const cli::ClipSpaceScene clip = cli::ToClipSpace(scenes::LoadScene(scenePath.string(), aspect), aspect);
+  std::vector<SnappedTriangle> triangles;
+  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
+    triangles.push_back(Snap({clip.positions[indices[3 * t]], clip.positions[indices[3 * t + 1]],
+                              clip.positions[indices[3 * t + 2]]},
+                             kWidth, kHeight));
+  }
+  constexpr int kOffsets[4][2] = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
+
+  const auto channels = ReadUintExrChannels(out / "samples.exr");
+  std::vector<std::string> names;
+  for (const auto& [name, values] : channels) names.push_back(name);
+  EXPECT_EQ(names, (std::vector<std::string>{"coverage.s0", "coverage.s1", "coverage.s2", "coverage.s3",
+                                             "primitive.s0", "primitive.s1", "primitive.s2", "primitive.s3"}));
+  std::array<int, 2> coveredBy{};
+  int coveredInSecondStrip = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      for (int s = 0; s < 4; ++s) {
+        const std::int64_t sx = x * 256 + 128 + 16 * kOffsets[s][0], sy = y * 256 + 128 + 16 * kOffsets[s][1];
+        const bool in0 = Covers(triangles[0], sx, sy), in1 = Covers(triangles[1], sx, sy);
+        ASSERT_FALSE(in0 && in1) << "shared edge covered twice at " << x << "," << y << " sample " << s;
+        const std::uint32_t expected = in0 ? 0u : in1 ? 1u : cli::kNoPrimitive;
+        const std::size_t pixel = static_cast<std::size_t>(y) * kWidth + x;
+        const std::string suffix = ".s" + std::to_string(s);
+        ASSERT_EQ(channels.at("coverage" + suffix)[pixel], (in0 || in1) ? 1u : 0u) << x << "," << y << " sample " << s;
+        ASSERT_EQ(channels.at("primitive" + suffix)[pixel], expected) << x << "," << y << " sample " << s;
+        coveredBy[0] += in0;
+        coveredBy[1] += in1;
+        coveredInSecondStrip += y >= 32 && (in0 || in1);
+      }
+    }
+  }
+  // Both triangles cover a good part of the image's 10388 samples.
+  EXPECT_GT(coveredBy[0], 100);
+  EXPECT_GT(coveredBy[1], 100);
+  EXPECT_GT(coveredInSecondStrip, 0);
 }
 
 TEST_F(CliRasterTest, HelpExplainsEveryOption) {
@@ -256,7 +374,8 @@ TEST_P(CliRasterEqaaTest, WritesTheEqaaOutputsAndCounters) {
   EXPECT_NE(run.out.find("eqaa       " + config + ", policy hraa"), std::string::npos) << run.out;
   EXPECT_EQ(FilesIn(out),
             (std::vector<std::string>{"counters.json", "coverage.png", "depth.exr", "eqaa.exr",
-                                      "fmask.png", "primitives.png", "resolve.png"}));
+                                      "fmask.png", "primitives.png", "resolve.png",
+                                      "samples.exr"}));
 
   const nlohmann::ordered_json json =
       nlohmann::ordered_json::parse(ReadText(out / "counters.json"));

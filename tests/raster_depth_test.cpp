@@ -4,7 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <functional>
+#include <map>
+#include <tuple>
+#include <vector>
+#include <initializer_list>
+#include <string>
+#include <utility>
 
 #include <tbb/global_control.h>
 
@@ -80,13 +88,15 @@ TEST(ZPlanes, CompressionIsInvisibleWhenEverySampleIsAnchored) {
   }
 }
 
-// N + 1 visible planes in one tile: the tile decompresses exactly once with a limit of N and
-// stays compressed with a limit of N + 1; afterwards unanchored samples read their anchor.
+// A fan of P triangles covering one tile, each with its own plane. While the k-th triangle
+// makes its first write, the pixels of wedges k..P still hold the clear depth, so the tile
+// references the clear plus k - 1 planes and needs one more: it needs P + 1 slots at the last
+// triangle (hw-facts §5.1: once written, the clear is a plane like any other). It therefore
+// decompresses exactly once with a limit of P and stays compressed with P + 1; afterwards
+// unanchored samples read their anchor.
 TEST(ZPlanes, PlaneLimitDecompresses) {
   constexpr int kSize = 8;
-  for (int limit : {2, 4, 7, 15}) {
-    // A fan of limit + 1 triangles around the tile centre, each with its own plane.
-    const int planes = limit + 1;
+  for (int planes : {3, 6, 15}) {
     Mesh mesh;
     mesh.clip.push_back(ScreenToClip(4.0, 4.0, 0.5, kSize, kSize));
     for (int k = 0; k < planes; ++k) {
@@ -94,14 +104,16 @@ TEST(ZPlanes, PlaneLimitDecompresses) {
       mesh.clip.push_back(ScreenToClip(4.0 + 20.0 * std::cos(angle), 4.0 + 20.0 * std::sin(angle), 0.5 + 0.01 * k, kSize, kSize));
       mesh.indices.insert(mesh.indices.end(), {0u, static_cast<std::uint32_t>(1 + k), static_cast<std::uint32_t>(1 + (k + 1) % planes)});
     }
-    for (int maxPlanes : {limit, planes}) {
+    for (int maxPlanes : {planes, planes + 1}) {
       DepthStencilSurface surface = MakeSurface(kSize, kSize, 8, 2, maxPlanes);
       const RasterResult result = Rasterize(mesh.Input(), CullNone(), surface);
-      const bool overflow = maxPlanes < planes;
+      const bool overflow = maxPlanes == planes;
       EXPECT_EQ(result.counters.zPlaneDecompressions, overflow ? 1u : 0u) << "limit " << maxPlanes;
+      EXPECT_EQ(result.counters.zPlaneCompactions, 0u) << "limit " << maxPlanes;
       EXPECT_EQ(surface.Tile(0, 0).state, overflow ? ZTileState::Decompressed : ZTileState::Compressed);
       if (!overflow) {
-        EXPECT_EQ(surface.Tile(0, 0).planeCount, planes);
+        // The clear stays in the table, unreferenced, until a compaction needs its slot.
+        EXPECT_EQ(surface.Tile(0, 0).planeCount, planes + 1);
         continue;
       }
       for (int y = 0; y < kSize; ++y) {
@@ -113,6 +125,98 @@ TEST(ZPlanes, PlaneLimitDecompresses) {
       }
     }
   }
+}
+
+// Flat triangles over one 8x8 tile, derived by hand: "left" covers x < 4 (every sample of
+// columns 0..3; the standard 4x offsets never reach a pixel edge), "right" covers x > 4, "all"
+// the whole tile. Every vertex stays inside the guard band, so nothing is clipped.
+Mesh FlatTriangles(std::initializer_list<std::pair<const char*, double>> triangles) {
+  Mesh mesh;
+  for (const auto& [region, z] : triangles) {
+    const std::string name = region;
+    std::array<std::array<double, 2>, 3> v{};
+    if (name == "left") v = {{{4.0, -20.0}, {4.0, 28.0}, {-22.0, 4.0}}};
+    if (name == "right") v = {{{4.0, -20.0}, {30.0, 4.0}, {4.0, 28.0}}};
+    if (name == "all") v = {{{-20.0, -4.0}, {30.0, -4.0}, {5.0, 30.0}}};
+    for (const auto& [x, y] : v) {
+      mesh.indices.push_back(static_cast<std::uint32_t>(mesh.clip.size()));
+      mesh.clip.push_back(ScreenToClip(x, y, z, 8, 8));
+    }
+  }
+  return mesh;
+}
+
+// hw-facts §5.1: ZMask 0 means "cleared" and a written tile stores planes only, so a tile that
+// is partly written holds the clear depth as one of its planes.
+TEST(ZPlanes, ClearIsAPlaneOnceTheTileIsPartlyWritten) {
+  struct Case {
+    const char* what;
+    Mesh mesh;
+    int maxPlanes;
+    std::uint64_t decompressions, compactions;
+    int planesAtEnd;  // when still compressed
+  };
+  const Case cases[] = {
+      // clear + left = 2 slots; right needs a third while the clear (columns 4..7) and left
+      // (columns 0..3) are both referenced.
+      {"left then right, limit 2", FlatTriangles({{"left", 0.5}, {"right", 0.25}}), 2, 1, 0, 0},
+      {"left then right, limit 3", FlatTriangles({{"left", 0.5}, {"right", 0.25}}), 3, 0, 0, 3},
+      // "all" leaves the clear unreferenced; "right" drops it to make room.
+      {"all then right, limit 2", FlatTriangles({{"all", 0.5}, {"right", 0.25}}), 2, 0, 1, 2},
+      // One slot cannot hold the clear and a triangle: the first write decompresses, even when
+      // the triangle covers the whole tile (the clear is still referenced by the pixels it has
+      // not written yet).
+      {"all, limit 1", FlatTriangles({{"all", 0.5}}), 1, 1, 0, 0},
+      {"all, limit 0", FlatTriangles({{"all", 0.5}}), 0, 1, 0, 0},
+  };
+  for (const Case& c : cases) {
+    DepthStencilSurface surface = MakeSurface(8, 8, 4, 1, c.maxPlanes);
+    DrawState state = CullNone();
+    state.depth.hiZEnable = false;
+    const RasterResult result = Rasterize(c.mesh.Input(), state, surface);
+    EXPECT_EQ(result.counters.zPlaneDecompressions, c.decompressions) << c.what;
+    EXPECT_EQ(result.counters.zPlaneCompactions, c.compactions) << c.what;
+    const bool decompressed = c.decompressions > 0;
+    EXPECT_EQ(surface.Tile(0, 0).state, decompressed ? ZTileState::Decompressed : ZTileState::Compressed) << c.what;
+    if (!decompressed) {
+      EXPECT_EQ(surface.Tile(0, 0).planeCount, c.planesAtEnd) << c.what;
+    }
+  }
+}
+
+// The decompression takes effect inside the write of one pixel. Clear + "left" fill a
+// two-plane table; a flat triangle over the quad at (4, 4) only makes its first write in the
+// quad's pixel 0 (4, 4): that pixel was tested exactly (all four samples), its unanchored
+// samples' new depth is lost (they read anchor 0's), and pixels 1..3 of the same quad test
+// unanchored samples against their nearest anchor.
+TEST(ZPlanes, DecompressionTakesEffectInsideTheQuad) {
+  Mesh mesh = FlatTriangles({{"left", 0.5}});
+  for (const auto& [x, y] : {std::pair{4.03125, 4.03125}, {8.0, 4.03125}, {4.03125, 8.0}}) {
+    mesh.indices.push_back(static_cast<std::uint32_t>(mesh.clip.size()));
+    mesh.clip.push_back(ScreenToClip(x, y, 0.25, 8, 8));
+  }
+  DepthStencilSurface surface = MakeSurface(8, 8, 4, 1, 2);
+  DrawState state = CullNone();
+  state.depth.hiZEnable = false;
+  const RasterResult result = Rasterize(mesh.Input(), state, surface);
+  EXPECT_EQ(result.counters.zPlaneDecompressions, 1u);
+  const QuadFragment* quad = nullptr;
+  for (const QuadFragment& q : result.quadsByBin[0]) {
+    if (q.primitiveId == 1 && q.x == 4 && q.y == 4) quad = &q;
+  }
+  ASSERT_NE(quad, nullptr);
+  // Standard 4x (hw-facts §4.1): every sample of pixels 4 and 5 lies right of and below
+  // 4.03125 and above x + y = 12.03125, so the whole quad is covered and passes the clear.
+  for (int p = 0; p < kQuadPixels; ++p) {
+    EXPECT_EQ(quad->covered.Pixel(p), 0xF) << p;
+    EXPECT_EQ(quad->passed.Pixel(p), 0xF) << p;
+    EXPECT_EQ(quad->depthExact.Pixel(p), p == 0 ? 0xF : 0x1) << p;
+  }
+  // Pixel (4, 4) wrote sample 0 only; samples 1..3 read it. The triangle is flat, so every
+  // anchored depth in the quad is 0.25.
+  for (int s = 0; s < 4; ++s) EXPECT_EQ(surface.TestDepth(4, 4, s), 0.25f) << s;
+  EXPECT_EQ(surface.TestDepth(0, 0, 3), 0.5f);
+  EXPECT_EQ(surface.TestDepth(7, 0, 3), 1.0f);
 }
 
 // Each new full-screen triangle in front hides every earlier plane, so compaction makes room
@@ -132,6 +236,210 @@ TEST(ZPlanes, CompactionDropsHiddenPlanes) {
   EXPECT_EQ(result.counters.zPlaneDecompressions, 0u);
   EXPECT_GT(result.counters.zPlaneCompactions, 0u);
   EXPECT_EQ(result.counters.zTilesCompressedAtEnd, 4u);
+}
+
+// The depth rules of docs/raster.md ("Depth, Z planes and hi-Z"), re-implemented slowly and
+// apart from DepthStencilSurface: a tile is a list of planes, a sample the position of its
+// plane in that list; triangles in submission order, per tile quads in row-major order and
+// the quad's pixels in the order X0Y0, X1Y0, X0Y1, X1Y1; depth LESS with writes, no stencil,
+// no hi-Z. It records the passed and exact masks of every (set-up, pixel).
+class ReferenceDepthModel {
+ public:
+  ReferenceDepthModel(int width, int height, const SamplePattern& pattern, int anchors, int maxPlanes)
+      : width_(width), height_(height), pattern_(pattern), samples_(pattern.Count()), anchors_(anchors),
+        maxPlanes_(maxPlanes), tilesX_((width + 7) / 8), tiles_(static_cast<std::size_t>(tilesX_ * ((height + 7) / 8))),
+        planeOf_(static_cast<std::size_t>(width * height * samples_), -1),
+        anchorDepth_(static_cast<std::size_t>(width * height * anchors), 1.0f) {}
+
+  struct Record {
+    SampleMask passed = 0, exact = 0;
+  };
+  std::map<std::tuple<std::size_t, int, int>, Record> records;  // (set-up, x, y)
+  std::uint64_t decompressions = 0, compactions = 0;
+
+  void Draw(const std::vector<TriangleSetup>& setups) {
+    for (std::size_t t = 0; t < setups.size(); ++t) {
+      for (int ty = 0; ty * 8 < height_; ++ty) {
+        for (int tx = 0; tx * 8 < width_; ++tx) {
+          for (int qy = ty * 8; qy < std::min(ty * 8 + 8, height_); qy += 2) {
+            for (int qx = tx * 8; qx < std::min(tx * 8 + 8, width_); qx += 2) {
+              for (int p = 0; p < 4; ++p) {
+                const int x = qx + (p & 1), y = qy + (p >> 1);
+                if (x < width_ && y < height_) Pixel(t, setups[t], x, y);
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+
+  // The sample's depth as the depth unit sees it.
+  float Stored(int x, int y, int s) const {
+    const Tile& tile = TileOf(x, y);
+    if (tile.state == State::Cleared) return 1.0f;
+    if (tile.state == State::Decompressed) return anchorDepth_[static_cast<std::size_t>(PixelOf(x, y) * anchors_ + Nearest(x, y, s))];
+    return tile.planes[static_cast<std::size_t>(planeOf_[Index(x, y, s)])].Evaluate(X(x, y, s), Y(x, y, s));
+  }
+
+ private:
+  enum class State { Cleared, Compressed, Decompressed };
+  struct Tile {
+    State state = State::Cleared;
+    std::vector<ZPlane> planes;
+  };
+
+  int PixelOf(int x, int y) const { return y * width_ + x; }
+  std::size_t Index(int x, int y, int s) const { return static_cast<std::size_t>(PixelOf(x, y) * samples_ + s); }
+  std::int64_t X(int x, int y, int s) const { return x * 256 + 128 + 16 * pattern_.Offset(QuadPixelIndex(x, y), s).x; }
+  std::int64_t Y(int x, int y, int s) const { return y * 256 + 128 + 16 * pattern_.Offset(QuadPixelIndex(x, y), s).y; }
+  Tile& TileOf(int x, int y) { return tiles_[static_cast<std::size_t>((y / 8) * tilesX_ + x / 8)]; }
+  const Tile& TileOf(int x, int y) const { return tiles_[static_cast<std::size_t>((y / 8) * tilesX_ + x / 8)]; }
+
+  // Euclidean distance in the pixel's own offsets; the lower index wins ties.
+  int Nearest(int x, int y, int s) const {
+    if (s < anchors_) return s;
+    const int q = QuadPixelIndex(x, y);
+    int best = 0, bestDistance = 1 << 30;
+    for (int a = 0; a < anchors_; ++a) {
+      const int dx = pattern_.Offset(q, s).x - pattern_.Offset(q, a).x, dy = pattern_.Offset(q, s).y - pattern_.Offset(q, a).y;
+      if (dx * dx + dy * dy < bestDistance) {
+        best = a;
+        bestDistance = dx * dx + dy * dy;
+      }
+    }
+    return best;
+  }
+
+  void ForTilePixels(int x, int y, const std::function<void(int, int)>& fn) const {
+    const int x0 = x / 8 * 8, y0 = y / 8 * 8;
+    for (int py = y0; py < std::min(y0 + 8, height_); ++py) {
+      for (int px = x0; px < std::min(x0 + 8, width_); ++px) fn(px, py);
+    }
+  }
+
+  void Pixel(std::size_t t, const TriangleSetup& tri, int x, int y) {
+    SampleMask covered = 0, passed = 0;
+    std::array<float, 16> incoming{};
+    for (int s = 0; s < samples_; ++s) {
+      bool inside = true;
+      for (const EdgeFunction& e : tri.edges) inside &= e.a * X(x, y, s) + e.b * Y(x, y, s) + e.c >= 0;
+      if (!inside) continue;
+      covered |= static_cast<SampleMask>(1u << s);
+      incoming[static_cast<std::size_t>(s)] = tri.depth.Evaluate(X(x, y, s), Y(x, y, s));  // at its own position
+      if (incoming[static_cast<std::size_t>(s)] < Stored(x, y, s)) passed |= static_cast<SampleMask>(1u << s);
+    }
+    if (covered == 0) return;
+    Tile& tile = TileOf(x, y);
+    const SampleMask anchored = static_cast<SampleMask>((1u << anchors_) - 1u);
+    records[{t, x, y}] = {passed, tile.state == State::Decompressed ? static_cast<SampleMask>(covered & anchored) : covered};
+    if (passed == 0) return;
+    int slot = -1;
+    if (tile.state != State::Decompressed) slot = Slot(tile, tri.depth, x, y);
+    for (int s = 0; s < samples_; ++s) {
+      if (!((passed >> s) & 1)) continue;
+      if (slot >= 0) {
+        planeOf_[Index(x, y, s)] = slot;
+      } else if (s < anchors_) {
+        anchorDepth_[static_cast<std::size_t>(PixelOf(x, y) * anchors_ + s)] = incoming[static_cast<std::size_t>(s)];
+      }
+    }
+  }
+
+  int Slot(Tile& tile, const ZPlane& plane, int x, int y) {
+    if (tile.state == State::Cleared) {
+      if (maxPlanes_ == 0) return Decompress(tile, x, y);
+      tile.state = State::Compressed;
+      tile.planes = {ZPlane{0.0, 0.0, 1.0}};
+      ForTilePixels(x, y, [&](int px, int py) {
+        for (int s = 0; s < samples_; ++s) planeOf_[Index(px, py, s)] = 0;
+      });
+    }
+    for (std::size_t i = 0; i < tile.planes.size(); ++i) {
+      if (tile.planes[i] == plane) return static_cast<int>(i);
+    }
+    if (static_cast<int>(tile.planes.size()) >= maxPlanes_) {
+      std::vector<int> uses(tile.planes.size(), 0);
+      ForTilePixels(x, y, [&](int px, int py) {
+        for (int s = 0; s < samples_; ++s) ++uses[static_cast<std::size_t>(planeOf_[Index(px, py, s)])];
+      });
+      std::vector<ZPlane> kept;
+      std::vector<int> renumber(tile.planes.size(), -1);
+      for (std::size_t i = 0; i < tile.planes.size(); ++i) {
+        if (uses[i] == 0) continue;
+        renumber[i] = static_cast<int>(kept.size());
+        kept.push_back(tile.planes[i]);
+      }
+      if (kept.size() < tile.planes.size()) {
+        ++compactions;
+        tile.planes = kept;
+        ForTilePixels(x, y, [&](int px, int py) {
+          for (int s = 0; s < samples_; ++s) planeOf_[Index(px, py, s)] = renumber[static_cast<std::size_t>(planeOf_[Index(px, py, s)])];
+        });
+      }
+    }
+    if (static_cast<int>(tile.planes.size()) >= maxPlanes_) return Decompress(tile, x, y);
+    tile.planes.push_back(plane);
+    return static_cast<int>(tile.planes.size()) - 1;
+  }
+
+  int Decompress(Tile& tile, int x, int y) {
+    ForTilePixels(x, y, [&](int px, int py) {
+      for (int a = 0; a < anchors_; ++a) anchorDepth_[static_cast<std::size_t>(PixelOf(px, py) * anchors_ + a)] = Stored(px, py, a);
+    });
+    tile.state = State::Decompressed;
+    ++decompressions;
+    return -1;
+  }
+
+  int width_, height_;
+  const SamplePattern& pattern_;
+  int samples_, anchors_, maxPlanes_, tilesX_;
+  std::vector<Tile> tiles_;
+  std::vector<int> planeOf_;
+  std::vector<float> anchorDepth_;
+};
+
+// The rasterizer's depth unit against the documented model, on random overlapping soups with
+// small plane limits (so tiles compact and decompress) and unanchored samples.
+TEST(ZPlanes, MatchesTheDocumentedModel) {
+  constexpr int kWidth = 40, kHeight = 24;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    Random rng(seed);
+    const Mesh mesh = RandomSoup(rng, 40, kWidth, kHeight, 8.0);
+    for (auto [s, z] : {std::pair{4, 1}, {8, 2}, {16, 4}, {2, 2}}) {
+      for (int maxPlanes : {0, 1, 2, 3, 4}) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed << " S " << s << " Z " << z << " planes " << maxPlanes);
+        DepthStencilSurface surface = MakeSurface(kWidth, kHeight, s, z, maxPlanes, seed % 2 ? "eqaa" : "standard");
+        DrawState state = CullNone();
+        state.depth.hiZEnable = false;
+        const RasterResult result = Rasterize(mesh.Input(), state, surface);
+        ReferenceDepthModel reference(kWidth, kHeight, surface.Pattern(), z, maxPlanes);
+        reference.Draw(result.triangles);
+        EXPECT_EQ(result.counters.zPlaneDecompressions, reference.decompressions);
+        EXPECT_EQ(result.counters.zPlaneCompactions, reference.compactions);
+        std::size_t pixelsSeen = 0;
+        for (const auto& bin : result.quadsByBin) {
+          for (const QuadFragment& q : bin) {
+            for (int p = 0; p < kQuadPixels; ++p) {
+              if (q.covered.Pixel(p) == 0) continue;
+              ++pixelsSeen;
+              const auto found = reference.records.find({q.setupIndex, q.x + (p & 1), q.y + (p >> 1)});
+              ASSERT_NE(found, reference.records.end());
+              ASSERT_EQ(q.passed.Pixel(p), found->second.passed) << q.x + (p & 1) << "," << q.y + (p >> 1);
+              ASSERT_EQ(q.depthExact.Pixel(p), found->second.exact) << q.x + (p & 1) << "," << q.y + (p >> 1);
+            }
+          }
+        }
+        EXPECT_EQ(pixelsSeen, reference.records.size());
+        for (int y = 0; y < kHeight; ++y) {
+          for (int x = 0; x < kWidth; ++x) {
+            for (int k = 0; k < s; ++k) ASSERT_EQ(surface.TestDepth(x, y, k), reference.Stored(x, y, k)) << x << "," << y << " sample " << k;
+          }
+        }
+      }
+    }
+  }
 }
 
 TEST(ZPlanes, NearestAnchorIsTheClosestAnchoredSample) {
