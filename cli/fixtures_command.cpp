@@ -26,6 +26,7 @@
 #include "cli/output_dir.h"
 #include "cli/output_error.h"
 #include "fmask/fixtures.h"
+#include "raster/json_input.h"
 
 namespace cli {
 namespace {
@@ -213,6 +214,9 @@ void WriteBytes(const fs::path& path, std::span<const std::uint8_t> bytes) {
 }
 
 std::optional<Bytes> ReadBytes(const fs::path& path) {
+  // Only regular files: a FIFO put in a fixture's place would block the verifier forever.
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return std::nullopt;
   std::ifstream file(path, std::ios::binary);
   if (!file) return std::nullopt;
   return Bytes(std::istreambuf_iterator<char>(file), {});
@@ -287,25 +291,77 @@ void WriteFixtureSet(const std::string& out, std::ostream& summary) {
   throw std::runtime_error("fixture " + fixture + ": " + problem);
 }
 
+// The manifest must list exactly the canonical set this aasim derives, each fixture once: a
+// manifest with fixtures removed would otherwise verify what is left and call the set good.
+void CheckCanonicalNames(const Json& fixtures, const std::string& source) {
+  std::vector<std::string> expected;
+  for (const fmask::FixtureSpec& spec : fmask::CanonicalFixtureSet()) {
+    expected.push_back(fmask::FixtureName(spec));
+  }
+  std::ranges::sort(expected);
+  std::vector<std::string> listed;
+  for (std::size_t i = 0; i < fixtures.size(); ++i) {
+    const Json& entry = fixtures[i];
+    if (!entry.is_object() || !entry.contains("name") || !entry["name"].is_string()) {
+      throw std::runtime_error(source + ": fixtures[" + std::to_string(i) + "] has no 'name' string");
+    }
+    listed.push_back(entry["name"].get<std::string>());
+  }
+  std::ranges::sort(listed);
+  if (const auto twice = std::ranges::adjacent_find(listed); twice != listed.end()) {
+    throw std::runtime_error(source + ": fixture " + raster::JsonExcerpt(Json(*twice)) + " is listed twice");
+  }
+  std::vector<std::string> extra;
+  std::ranges::set_difference(listed, expected, std::back_inserter(extra));
+  if (!extra.empty()) {
+    throw std::runtime_error(source + ": fixture " + raster::JsonExcerpt(Json(extra.front())) +
+                             " is not in the canonical set of " + std::to_string(expected.size()));
+  }
+  std::vector<std::string> missing;
+  std::ranges::set_difference(expected, listed, std::back_inserter(missing));
+  if (!missing.empty()) {
+    std::string names;
+    for (std::size_t i = 0; i < std::min<std::size_t>(missing.size(), 3); ++i) names += (i ? ", " : "") + missing[i];
+    throw std::runtime_error(source + ": " + std::to_string(missing.size()) + " of the " +
+                             std::to_string(expected.size()) + " canonical fixtures are missing (" + names +
+                             (missing.size() > 3 ? ", ..." : "") + ")");
+  }
+}
+
 Json ReadManifest(const fs::path& dir) {
   const fs::path path = dir / kManifestName;
-  const std::optional<Bytes> text = ReadBytes(path);
-  if (!text) throw std::runtime_error(path.string() + ": cannot read (not a fixture set?)");
-  Json manifest = Json::parse(text->begin(), text->end(), nullptr, false);
-  if (manifest.is_discarded()) throw std::runtime_error(path.string() + ": not valid JSON");
+  try {
+    return ParseFixtureManifest(raster::ReadJsonFile(path), path.string());
+  } catch (const raster::JsonTextError& error) {
+    throw std::runtime_error(path.string() + ": " + error.what() + " (not a fixture set?)");
+  }
+}
+
+}  // namespace
+
+nlohmann::ordered_json ParseFixtureManifest(std::string_view text, const std::string& source) {
+  Json manifest;
+  try {
+    manifest = raster::ParseJsonText<Json>(text, /*allowComments=*/false);
+  } catch (const raster::JsonTextError& error) {
+    throw std::runtime_error(source + ": " + error.what());
+  }
   if (!manifest.is_object() || manifest.value("schema", Json()) != kFixturesSchema) {
-    throw std::runtime_error(path.string() + ": schema is not " + std::string(kFixturesSchema));
+    throw std::runtime_error(source + ": schema is not " + std::string(kFixturesSchema));
   }
   if (manifest.value("version", Json()) != kFixturesVersion) {
-    throw std::runtime_error(
-        path.string() + ": version " + manifest.value("version", Json()).dump() +
-        " is not supported (this aasim reads version " + std::to_string(kFixturesVersion) + ")");
+    throw std::runtime_error(source + ": version " + raster::JsonExcerpt(manifest.value("version", Json())) +
+                             " is not supported (this aasim reads version " + std::to_string(kFixturesVersion) +
+                             ")");
   }
   if (!manifest.contains("fixtures") || !manifest["fixtures"].is_array()) {
-    throw std::runtime_error(path.string() + ": 'fixtures' is not a list");
+    throw std::runtime_error(source + ": 'fixtures' is not a list");
   }
+  CheckCanonicalNames(manifest["fixtures"], source);
   return manifest;
 }
+
+namespace {
 
 template <typename T>
 T Field(const Json& object, const char* key, const std::string& fixture) {
@@ -327,19 +383,30 @@ fmask::FixtureSpec SpecOf(const Json& entry, const std::string& fixture) {
           Field<std::string>(Field<Json>(entry, "policy", fixture), "name", fixture)};
 }
 
+// A record is exactly {name, bytes, fnv1a64}: a checksum under another name would otherwise be
+// ignored and the file go unchecked.
+void CheckRecordKeys(const Json& record, const std::string& fixture) {
+  if (!record.is_object()) Fail(fixture, "a 'files' record is not an object");
+  for (const auto& item : record.items()) {
+    if (item.key() != "name" && item.key() != "bytes" && item.key() != "fnv1a64") {
+      Fail(fixture, "a 'files' record has the unknown key " + raster::JsonExcerpt(Json(item.key())));
+    }
+  }
+}
+
 void CheckRecord(const Json& files, std::string_view name, std::span<const std::uint8_t> actual,
                  const std::string& fixture) {
   const std::string file(name);
   for (const Json& record : files) {
-    // Json() defaults: a malformed record compares unequal instead of throwing.
-    if (!record.is_object() || record.value("name", Json()) != file) continue;
+    CheckRecordKeys(record, fixture);
+    if (record.value("name", Json()) != file) continue;
     if (record.value("bytes", Json()) != actual.size()) {
       Fail(fixture, file + " has " + std::to_string(actual.size()) + " bytes, the manifest says " +
-                        record.value("bytes", Json()).dump());
+                        raster::JsonExcerpt(record.value("bytes", Json())));
     }
     if (record.value("fnv1a64", Json()) != Hex64(fmask::Fnv1a64(actual))) {
       Fail(fixture, file + " checksum " + Hex64(fmask::Fnv1a64(actual)) +
-                        " does not match the manifest's " + record.value("fnv1a64", Json()).dump());
+                        " does not match the manifest's " + raster::JsonExcerpt(record.value("fnv1a64", Json())));
     }
     return;
   }

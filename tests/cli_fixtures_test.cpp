@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/fixtures_command.h"
 #include "cli/output_dir.h"
 #include "fmask/fixtures.h"
 
@@ -219,7 +220,83 @@ TEST_F(CliFixtures, UnknownSchemaVersionAndMissingManifestFail) {
   std::ofstream(set / "manifest.json") << "{not json";
   ExpectVerifyFails(set, {"manifest.json", "not valid JSON"});
   fs::remove(set / "manifest.json");
-  ExpectVerifyFails(set, {"manifest.json", "cannot read"});
+  ExpectVerifyFails(set, {"manifest.json", "cannot be opened"});
+}
+
+// A manifest naming the canonical set, without the per-fixture fields set-level checks ignore.
+nlohmann::ordered_json NamesOnlyManifest() {
+  nlohmann::ordered_json fixtures = nlohmann::ordered_json::array();
+  for (const fmask::FixtureSpec& spec : fmask::CanonicalFixtureSet()) {
+    fixtures.push_back({{"name", fmask::FixtureName(spec)}});
+  }
+  return {{"schema", cli::kFixturesSchema}, {"version", cli::kFixturesVersion}, {"fixtures", fixtures}};
+}
+
+std::string ManifestError(const nlohmann::ordered_json& manifest) {
+  try {
+    cli::ParseFixtureManifest(manifest.dump(), "m.json");
+  } catch (const std::runtime_error& error) {
+    return error.what();
+  }
+  return "no error";
+}
+
+// --verify used to accept a manifest with fixtures removed, an empty list ("verified 0") and
+// duplicated entries: the set must be the canonical one.
+TEST(CliFixtureManifest, ListsExactlyTheCanonicalSet) {
+  EXPECT_EQ(ManifestError(NamesOnlyManifest()), "no error");
+  const std::size_t total = fmask::CanonicalFixtureSet().size();
+  nlohmann::ordered_json removed = NamesOnlyManifest();
+  const std::string gone = removed["fixtures"][7]["name"];
+  removed["fixtures"].erase(7);
+  EXPECT_EQ(ManifestError(removed), "m.json: 1 of the " + std::to_string(total) +
+                                        " canonical fixtures are missing (" + gone + ")");
+  nlohmann::ordered_json empty = NamesOnlyManifest();
+  empty["fixtures"] = nlohmann::ordered_json::array();
+  EXPECT_NE(ManifestError(empty).find(std::to_string(total) + " of the " + std::to_string(total)),
+            std::string::npos);
+  nlohmann::ordered_json twice = NamesOnlyManifest();
+  twice["fixtures"].push_back(twice["fixtures"][0]);
+  EXPECT_EQ(ManifestError(twice),
+            "m.json: fixture \"" + twice["fixtures"][0]["name"].get<std::string>() + "\" is listed twice");
+  nlohmann::ordered_json unknown = NamesOnlyManifest();
+  unknown["fixtures"][0]["name"] = std::string(10000, 'x');
+  const std::string message = ManifestError(unknown);
+  EXPECT_NE(message.find("is not in the canonical set"), std::string::npos) << message;
+  EXPECT_LT(message.size(), 200u);
+}
+
+// Nesting ~70,000 deep crashed the version message's dump().
+TEST(CliFixtureManifest, DeepNestingIsRefusedWithAShortMessage) {
+  const std::string deep = std::string(70000, '[') + std::string(70000, ']');
+  nlohmann::ordered_json manifest = NamesOnlyManifest();
+  const std::string text = "{\"schema\": \"aasim.fmask.fixtures\", \"version\": " + deep + "}";
+  try {
+    cli::ParseFixtureManifest(text, "m.json");
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_EQ(std::string(error.what()), "m.json: nests deeper than 64 levels");
+  }
+}
+
+// End to end: the verifier names what is missing, and a checksum under an unknown name is an
+// error instead of an unchecked file.
+TEST_F(CliFixtures, VerifyNamesMissingFixturesAndUnknownChecksums) {
+  const fs::path set = WriteSet();
+  const std::string original = ReadText(set / "manifest.json");
+  nlohmann::ordered_json manifest = nlohmann::ordered_json::parse(original);
+  const std::string gone = manifest["fixtures"][2]["name"];
+  manifest["fixtures"].erase(2);
+  std::ofstream(set / "manifest.json") << manifest.dump();
+  ExpectVerifyFails(set, {"manifest.json", "canonical fixtures are missing (" + gone + ")"});
+
+  manifest = nlohmann::ordered_json::parse(original);
+  nlohmann::ordered_json& record = manifest["fixtures"][4]["files"][0];
+  record["sha256"] = record["fnv1a64"];
+  record.erase("fnv1a64");
+  const std::string name = manifest["fixtures"][4]["name"];
+  std::ofstream(set / "manifest.json") << manifest.dump();
+  ExpectVerifyFails(set, {"fixture " + name, "unknown key \"sha256\""});
 }
 
 TEST_F(CliFixtures, UsageErrorsExitTwo) {
