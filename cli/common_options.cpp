@@ -88,13 +88,13 @@ namespace {
 
 // "0064" -> "64", "-007" -> "-7"; an error for anything that is not a decimal integer.
 std::string DecimalInteger(std::string text) {
-  const std::size_t digits = text.starts_with('+') || text.starts_with('-') ? 1 : 0;
-  const bool decimal = text.size() > digits &&
-                       std::all_of(text.begin() + static_cast<std::ptrdiff_t>(digits), text.end(),
+  const std::size_t signLength = text.starts_with('+') || text.starts_with('-') ? 1 : 0;
+  const bool decimal = text.size() > signLength &&
+                       std::all_of(text.begin() + static_cast<std::ptrdiff_t>(signLength), text.end(),
                                    [](char c) { return c >= '0' && c <= '9'; });
   if (!decimal) throw CLI::ValidationError("'" + text + "' is not a decimal integer");
-  const std::size_t firstNonZero = text.find_first_not_of('0', digits);
-  text.erase(digits, (firstNonZero == std::string::npos ? text.size() - 1 : firstNonZero) - digits);
+  const std::size_t firstNonZero = text.find_first_not_of('0', signLength);
+  text.erase(signLength, (firstNonZero == std::string::npos ? text.size() - 1 : firstNonZero) - signLength);
   return text;
 }
 

@@ -24,7 +24,7 @@ inline constexpr std::size_t kMaxJsonExcerpt = 48;  // characters of a value quo
 inline constexpr std::size_t kMaxJsonReason = 160;  // characters of the parser's own message
 
 // Larger than any pattern, GPU file or fixture manifest aasim writes (the manifest of the
-// canonical fixture set is about 1 MB), small enough to read whole without a memory check.
+// canonical fixture set is about 1.4 MB), small enough to read whole without a memory check.
 inline constexpr std::uintmax_t kMaxJsonFileBytes = 64u << 20;
 
 // The reason a text is not an acceptable JSON document, without the caller's prefix.
