@@ -1,7 +1,8 @@
 // Frame benchmark: times the frame pipeline (draw with the material kernel into an EQAA surface,
-// box resolve) and the demonstration post pass under both dispatch strategies on a real glTF
-// scene at 1920x1080, prints the blend dispatch of each strategy side by side, and checks that
-// one thread and all threads give identical counters and images.
+// box resolve) and every registered post pass under each of its dispatch strategies on a real
+// glTF scene at 1920x1080, prints each pass's studied dispatch under both strategies side by
+// side, and checks that the strategies' images match and that one thread and all threads give
+// identical counters and images.
 
 #include <algorithm>
 #include <chrono>
@@ -20,7 +21,8 @@
 
 #include "bench/bench_util.h"
 #include "cli/frame_input.h"
-#include "passes/demo_edge_blend.h"
+#include "passes/compare.h"
+#include "passes/registry.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
 
@@ -37,48 +39,72 @@ struct BenchOptions {
   std::string json;
 };
 
+// One run of a pass under one strategy.
+struct StrategyRun {
+  passes::Strategy strategy;
+  passes::PassOutput output;
+  double ms = 0.0;
+  std::size_t firstDispatch = 0, endDispatch = 0;
+};
+
 // One frame: its reports and the images that must not depend on the thread count.
 struct FrameRun {
   std::vector<sim::DispatchReport> reports;
-  std::vector<glm::vec4> colour, stencilOutput, queueOutput;
-  double frameMs = 0.0, stencilMs = 0.0, queueMs = 0.0;
+  std::vector<glm::vec4> colour;
+  double frameMs = 0.0;
+  std::vector<std::vector<StrategyRun>> passes;  // per registered pass, per strategy
 };
 
 double MsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::vector<glm::vec4> Pixels(const sim::Texture2D<glm::vec4>& texture) {
-  return {texture.Texels().begin(), texture.Texels().end()};
+std::vector<StrategyRun> RunPass(const passes::RegisteredPass& registered, sim::Machine& machine,
+                                 const sim::FramePipeline& pipeline) {
+  const passes::PassInfo& info = registered.info();
+  std::vector<StrategyRun> runs;
+  for (const passes::Strategy strategy : info.strategies) {
+    const std::unique_ptr<passes::Pass> pass = registered.make(passes::PassSettings(info.name, info.settings));
+    StrategyRun run{.strategy = strategy, .output = {}, .firstDispatch = machine.Reports().size()};
+    const auto start = std::chrono::steady_clock::now();
+    run.output = pass->Run(machine, passes::FrameInputsOf(pipeline), strategy);
+    run.ms = MsSince(start);
+    run.endDispatch = machine.Reports().size();
+    runs.push_back(std::move(run));
+  }
+  return runs;
 }
 
 FrameRun RunFrame(const sim::FrameGeometry& geometry, sim::Machine& machine, sim::FramePipeline& pipeline) {
   FrameRun run;
   machine.ClearReports();
-  auto start = std::chrono::steady_clock::now();
+  const auto start = std::chrono::steady_clock::now();
   pipeline.Render(geometry);
   run.frameMs = MsSince(start);
-  start = std::chrono::steady_clock::now();
-  const passes::DemoEdgeBlendResult stencil =
-      passes::RunDemoEdgeBlend(machine, pipeline.Colour(), passes::Strategy::StencilCulled);
-  run.stencilMs = MsSince(start);
-  start = std::chrono::steady_clock::now();
-  const passes::DemoEdgeBlendResult queue =
-      passes::RunDemoEdgeBlend(machine, pipeline.Colour(), passes::Strategy::DeferredQueue);
-  run.queueMs = MsSince(start);
+  for (const passes::RegisteredPass& pass : passes::AllPasses()) run.passes.push_back(RunPass(pass, machine, pipeline));
   run.reports = machine.Reports();
-  run.colour = Pixels(pipeline.Colour());
-  run.stencilOutput = Pixels(stencil.output);
-  run.queueOutput = Pixels(queue.output);
+  run.colour = {pipeline.Colour().Texels().begin(), pipeline.Colour().Texels().end()};
   return run;
 }
 
 bool SameRun(const FrameRun& a, const FrameRun& b) {
-  if (a.reports.size() != b.reports.size()) return false;
+  if (a.reports.size() != b.reports.size() || a.colour != b.colour) return false;
   for (std::size_t i = 0; i < a.reports.size(); ++i) {
     if (!a.reports[i].SameSimulation(b.reports[i])) return false;
   }
-  return a.colour == b.colour && a.stencilOutput == b.stencilOutput && a.queueOutput == b.queueOutput;
+  for (std::size_t p = 0; p < a.passes.size(); ++p) {
+    for (std::size_t s = 0; s < a.passes[p].size(); ++s) {
+      if (!passes::CompareOutputs(a.passes[p][s].output, b.passes[p][s].output).Identical()) return false;
+    }
+  }
+  return true;
+}
+
+bool StrategiesIdentical(const std::vector<StrategyRun>& runs) {
+  for (const StrategyRun& run : runs) {
+    if (!passes::CompareOutputs(runs.front().output, run.output).Identical()) return false;
+  }
+  return true;
 }
 
 FrameRun CaptureFrame(const sim::FrameGeometry& geometry, const sim::GpuConfig& gpu, int threads) {
@@ -88,37 +114,41 @@ FrameRun CaptureFrame(const sim::FrameGeometry& geometry, const sim::GpuConfig& 
   return RunFrame(geometry, machine, pipeline);
 }
 
-const sim::DispatchReport& Find(const std::vector<sim::DispatchReport>& reports, const std::string& name,
-                                sim::DispatchKind kind) {
-  for (const sim::DispatchReport& r : reports) {
-    if (r.name == name && r.kind == kind) return r;
+const sim::DispatchReport* Find(const FrameRun& frame, const StrategyRun& run, std::string_view name) {
+  for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) {
+    if (frame.reports[i].name == name) return &frame.reports[i];
   }
-  throw std::logic_error("no dispatch " + name);
+  return nullptr;
 }
 
 double Percent(std::uint64_t part, std::uint64_t whole) {
   return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
 }
 
-void PrintBlendComparison(const std::vector<sim::DispatchReport>& reports) {
-  const sim::DispatchReport& ps = Find(reports, "demo/blend", sim::DispatchKind::FullScreen);
-  const sim::DispatchReport& cs = Find(reports, "demo/blend", sim::DispatchKind::IndirectCompute);
-  std::printf("demo/blend          %14s %14s\n", "stencil (PS)", "queue (CS)");
+// The pass's first studied dispatch under its first two strategies, side by side.
+void PrintComparison(const FrameRun& frame, const passes::PassInfo& info, const std::vector<StrategyRun>& runs) {
+  if (runs.size() < 2) return;
+  const std::string_view studied = info.studiedDispatches.front();
+  const sim::DispatchReport* left = Find(frame, runs[0], studied);
+  const sim::DispatchReport* right = Find(frame, runs[1], studied);
+  if (left == nullptr || right == nullptr) throw std::logic_error("no dispatch " + std::string(studied));
+  std::printf("%-19.*s %14s %14s\n", static_cast<int>(studied.size()), studied.data(),
+              std::string(passes::StrategyName(runs[0].strategy)).c_str(),
+              std::string(passes::StrategyName(runs[1].strategy)).c_str());
   auto row = [](const char* label, double a, double b, const char* format) {
     std::printf("  %-18s", label);
     std::printf(format, a);
     std::printf(format, b);
     std::printf("\n");
   };
-  row("waves", static_cast<double>(ps.lanes.waves), static_cast<double>(cs.lanes.waves), " %14.0f");
-  row("lanes launched", static_cast<double>(ps.lanes.lanesLaunched), static_cast<double>(cs.lanes.lanesLaunched),
-      " %14.0f");
-  row("lanes active", static_cast<double>(ps.lanes.lanesActive), static_cast<double>(cs.lanes.lanesActive), " %14.0f");
-  row("utilization %", Percent(ps.lanes.lanesActive, ps.lanes.lanesLaunched),
-      Percent(cs.lanes.lanesActive, cs.lanes.lanesLaunched), " %14.1f");
-  row("DRAM KB", static_cast<double>(ps.DramBytes()) / 1024.0, static_cast<double>(cs.DramBytes()) / 1024.0,
+  const sim::LaneCounters &l = left->lanes, &r = right->lanes;
+  row("waves", static_cast<double>(l.waves), static_cast<double>(r.waves), " %14.0f");
+  row("lanes launched", static_cast<double>(l.lanesLaunched), static_cast<double>(r.lanesLaunched), " %14.0f");
+  row("lanes active", static_cast<double>(l.lanesActive), static_cast<double>(r.lanesActive), " %14.0f");
+  row("utilization %", Percent(l.lanesActive, l.lanesLaunched), Percent(r.lanesActive, r.lanesLaunched), " %14.1f");
+  row("DRAM KB", static_cast<double>(left->DramBytes()) / 1024.0, static_cast<double>(right->DramBytes()) / 1024.0,
       " %14.1f");
-  row("estimated us", ps.time.totalMicroseconds, cs.time.totalMicroseconds, " %14.1f");
+  row("estimated us", left->time.totalMicroseconds, right->time.totalMicroseconds, " %14.1f");
 }
 
 int RunBench(const BenchOptions& options) {
@@ -132,7 +162,9 @@ int RunBench(const BenchOptions& options) {
   const sim::FrameGeometry geometry = scene.Geometry();
   const sim::GpuConfig gpu = sim::GpuConfigByName(options.gpu);
 
-  std::vector<double> frameMs, stencilMs, queueMs;
+  std::vector<double> frameMs;
+  // Per pass, per strategy: the timed runs.
+  std::vector<std::vector<std::vector<double>>> passMs;
   FrameRun last;
   {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -140,29 +172,45 @@ int RunBench(const BenchOptions& options) {
     sim::Machine machine(gpu);
     sim::FramePipeline pipeline(machine, sim::FrameSettings{});
     const FrameRun warmUp = RunFrame(geometry, machine, pipeline);
-    std::printf("warm-up frame: %.1f ms (not counted)\n", warmUp.frameMs + warmUp.stencilMs + warmUp.queueMs);
+    std::printf("warm-up frame: %.1f ms (not counted)\n", warmUp.frameMs);
     for (int frame = 0; frame < options.frames; ++frame) {
       last = RunFrame(geometry, machine, pipeline);
       frameMs.push_back(last.frameMs);
-      stencilMs.push_back(last.stencilMs);
-      queueMs.push_back(last.queueMs);
+      passMs.resize(last.passes.size());
+      for (std::size_t p = 0; p < last.passes.size(); ++p) {
+        passMs[p].resize(last.passes[p].size());
+        for (std::size_t s = 0; s < last.passes[p].size(); ++s) passMs[p][s].push_back(last.passes[p][s].ms);
+      }
     }
   }
   const bool deterministic = SameRun(CaptureFrame(geometry, gpu, 1), last);
-  const bool identicalImages = last.stencilOutput == last.queueOutput;
+  bool identicalImages = true;
   const sim::FrameSettings settings;
   std::printf("aasim frame bench: %s (%zu triangles), %dx%d, %s, %s, %d threads, median of %d frames\n",
               options.scene.c_str(), scene.clip.TriangleCount(), kWidth, kHeight,
               fmask::EqaaName(settings.eqaa).c_str(), gpu.name.c_str(), options.threads, options.frames);
   std::printf("  frame pipeline (draw + material kernel + EQAA + resolve): %8.1f ms\n", bench::Median(frameMs));
-  std::printf("  demo pass, stencil strategy (2 dispatches):                %8.1f ms\n", bench::Median(stencilMs));
-  std::printf("  demo pass, queue strategy (3 dispatches):                  %8.1f ms\n", bench::Median(queueMs));
-  PrintBlendComparison(last.reports);
+  nlohmann::ordered_json passesJson = nlohmann::ordered_json::array();
+  for (std::size_t p = 0; p < last.passes.size(); ++p) {
+    const passes::PassInfo& info = passes::AllPasses()[p].info();
+    const bool identical = StrategiesIdentical(last.passes[p]);
+    identicalImages = identicalImages && identical;
+    nlohmann::ordered_json strategies = nlohmann::ordered_json::object();
+    for (std::size_t s = 0; s < last.passes[p].size(); ++s) {
+      const std::string strategy(passes::StrategyName(last.passes[p][s].strategy));
+      const std::size_t dispatches = last.passes[p][s].endDispatch - last.passes[p][s].firstDispatch;
+      std::printf("  %s pass [%s] (%zu dispatches): %8.1f ms\n", std::string(info.name).c_str(), strategy.c_str(),
+                  dispatches, bench::Median(passMs[p][s]));
+      strategies[strategy + "_ms"] = passMs[p][s];
+    }
+    PrintComparison(last, info, last.passes[p]);
+    passesJson.push_back({{"name", info.name}, {"strategies", strategies}, {"identical_images", identical}});
+  }
   std::printf("identical images: %s; deterministic (1 vs %d threads): %s\n", identicalImages ? "yes" : "no",
               options.threads, deterministic ? "yes" : "no");
   if (jsonFile.is_open()) {
     const nlohmann::ordered_json json = {{"schema", "aasim.bench.frame"},
-                                         {"version", 1},
+                                         {"version", 2},
                                          {"scene", options.scene},
                                          {"triangles", scene.clip.TriangleCount()},
                                          {"width", kWidth},
@@ -172,8 +220,7 @@ int RunBench(const BenchOptions& options) {
                                          {"threads", options.threads},
                                          {"frames", options.frames},
                                          {"frame_ms", frameMs},
-                                         {"stencil_strategy_ms", stencilMs},
-                                         {"queue_strategy_ms", queueMs},
+                                         {"passes", passesJson},
                                          {"identical_images", identicalImages},
                                          {"deterministic", deterministic}};
     jsonFile << json.dump(2) << '\n';
@@ -187,7 +234,7 @@ int RunBench(const BenchOptions& options) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Frame benchmark: the frame pipeline and the demo post pass (both dispatch strategies) at "
+      "Frame benchmark: the frame pipeline and every registered post pass (each dispatch strategy) at "
       "1920x1080; exits 1 unless the strategies' images match and 1 thread and all threads give "
       "identical counters and images",
       "aasim_frame_bench"};

@@ -23,7 +23,8 @@
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
 #include "cli/text_io.h"
-#include "passes/demo_edge_blend.h"
+#include "passes/compare.h"
+#include "passes/registry.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
@@ -32,12 +33,10 @@
 namespace cli {
 namespace {
 
-// The dispatch the strategies exist for (passes/demo_edge_blend.h names it in both).
-constexpr std::string_view kBlendDispatch = "demo/blend";
-
 struct PassRun {
   passes::Strategy strategy;
-  passes::DemoEdgeBlendResult result;
+  passes::PassOutput output;
+  std::size_t firstDispatch = 0, endDispatch = 0;  // [first, end) in the machine's reports
 };
 
 sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::SamplePattern pattern,
@@ -65,7 +64,9 @@ nlohmann::ordered_json ConfigurationJson(const FrameCommandOptions& options, int
           {"policy", options.policy},
           {"gpu", options.gpu},
           {"flush", options.flush},
-          {"post", options.post},
+          {"post", options.pass ? nlohmann::ordered_json(options.pass->Info().name) : nlohmann::ordered_json("none")},
+          {"pass_settings", options.pass ? nlohmann::ordered_json(passes::DescribeSettings(options.pass->settings))
+                                         : nlohmann::ordered_json(nullptr)},
           {"strategy", options.strategy.empty() ? nlohmann::ordered_json(nullptr)
                                                 : nlohmann::ordered_json(options.strategy)},
           {"threads", threads}};
@@ -78,11 +79,10 @@ void WriteImages(OutputDir& dir, const sim::FramePipeline& pipeline,
   WriteFrameExr(dir.Stage("frame.exr"), pipeline);
   for (const PassRun& run : passRuns) {
     const std::string folder = "post/" + std::string(passes::StrategyName(run.strategy)) + "/";
-    const sim::Texture2D<glm::vec4>& output = run.result.output;
+    const sim::Texture2D<glm::vec4>& output = run.output.colour;
     WritePng(dir.Stage(folder + "output.png"), output.Width(), output.Height(), 3,
              SrgbImage(output.Texels()));
-    const sim::Texture2D<float>& edges = run.result.edges;
-    WritePng(dir.Stage(folder + "edges.png"), edges.Width(), edges.Height(), 1, MaskImage(edges.Texels()));
+    for (const passes::PassLayer& layer : run.output.layers) WriteLayerPng(dir.Stage(folder + layer.name + ".png"), layer);
   }
 }
 
@@ -100,30 +100,17 @@ void WriteReports(OutputDir& dir, const FrameCommandOptions& options, const sim:
   WriteText(dir.Stage("dispatches.csv"), DispatchReportsCsv(reports, strategies));
 }
 
-// The study's question side by side: what the blend costs under each strategy.
-void PrintComparison(std::ostream& out, const PassRun& stencil, const PassRun& queue,
-                     const std::optional<ImageDifference>& difference) {
-  out << "\nstencil vs queue: " << kBlendDispatch << " (" << stencil.result.edgePixels
-      << " edge pixels)\n";
-  PrintDispatchComparison(out, kBlendDispatch, passes::StrategyName(stencil.strategy),
-                          stencil.result.dispatches, passes::StrategyName(queue.strategy),
-                          queue.result.dispatches);
-  out << "identical output: ";
-  if (difference) {
-    out << "NO, " << difference->pixels << " pixels differ, first at (" << difference->x << ", "
-        << difference->y << ")\n";
-  } else {
-    out << "yes (output and edge mask bit-identical)\n";
-  }
-}
-
-// Both strategies' images, output then edge mask; nullopt when they match bit for bit.
-std::optional<ImageDifference> CompareStrategies(const PassRun& a, const PassRun& b) {
-  const ImageDifference output = BitwiseDifference(a.result.output, b.result.output);
-  if (output.pixels > 0) return output;
-  const ImageDifference edges = BitwiseDifference(a.result.edges, b.result.edges);
-  if (edges.pixels > 0) return edges;
-  return std::nullopt;
+// The study's question side by side: what the studied dispatch costs under each strategy.
+void PrintComparison(std::ostream& out, const sim::Machine& machine, std::string_view studied,
+                     const PassRun& first, const PassRun& second, const passes::StrategyDifference& difference) {
+  const std::span<const sim::DispatchReport> reports(machine.Reports());
+  auto dispatches = [&](const PassRun& run) { return reports.subspan(run.firstDispatch, run.endDispatch - run.firstDispatch); };
+  out << "\n" << passes::StrategyName(first.strategy) << " vs " << passes::StrategyName(second.strategy) << ": "
+      << studied << " (" << first.output.workItems << " work-set pixels)\n";
+  PrintDispatchComparison(out, std::string(studied), passes::StrategyName(first.strategy), dispatches(first),
+                          passes::StrategyName(second.strategy), dispatches(second));
+  out << "identical output: "
+      << (difference.Identical() ? "yes (output and layers bit-identical)" : "NO, " + difference.Describe()) << '\n';
 }
 
 }  // namespace
@@ -148,11 +135,18 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
   std::vector<std::string> strategies(machine.Reports().size());
   std::vector<PassRun> passRuns;
   for (const passes::Strategy strategy : options.Strategies()) {
-    passRuns.push_back({strategy, passes::RunDemoEdgeBlend(machine, pipeline.Colour(), strategy)});
+    // One instance per strategy, as the study makes them.
+    const std::unique_ptr<passes::Pass> pass = options.pass->Make();
+    PassRun run{.strategy = strategy, .output = {}, .firstDispatch = machine.Reports().size()};
+    run.output = pass->Run(machine, passes::FrameInputsOf(pipeline), strategy);
+    run.endDispatch = machine.Reports().size();
     strategies.resize(machine.Reports().size(), std::string(passes::StrategyName(strategy)));
+    passRuns.push_back(std::move(run));
   }
-  const std::optional<ImageDifference> difference =
-      passRuns.size() == 2 ? CompareStrategies(passRuns[0], passRuns[1]) : std::nullopt;
+  passes::StrategyDifference difference;
+  for (std::size_t i = 1; i < passRuns.size() && difference.Identical(); ++i) {
+    difference = passes::CompareOutputs(passRuns.front().output, passRuns[i].output);
+  }
 
   WriteImages(dir, pipeline, passRuns);
   WriteReports(dir, options, machine, strategies, threads);
@@ -162,17 +156,18 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
           << ", " << fmask::EqaaName(options.Eqaa()) << ", pattern " << options.pattern
           << ", policy " << options.policy << ", GPU " << machine.Gpu().name << "\n\n";
   PrintDispatchSummary(summary, machine.Reports(), machine.Gpu(), strategies);
-  if (passRuns.size() == 2) PrintComparison(summary, passRuns[0], passRuns[1], difference);
+  if (passRuns.size() == 2) {
+    PrintComparison(summary, machine, options.pass->Info().studiedDispatches.front(), passRuns[0], passRuns[1],
+                    difference);
+  }
   double hostMs = 0.0;
   for (const sim::DispatchReport& report : machine.Reports()) hostMs += report.hostMilliseconds;
   summary << "\nhost time  " << std::llround(hostMs) << " ms simulating the dispatches (" << threads
           << " threads; wall time of this program, not a GPU time)\n"
           << "report: " << (dir.Path() / "dispatches.json").string() << '\n';
-  if (difference) {
-    throw std::runtime_error("--strategy both: stencil and queue outputs differ in " +
-                             std::to_string(difference->pixels) + " pixels, first at (" +
-                             std::to_string(difference->x) + ", " + std::to_string(difference->y) +
-                             "): a bug in passes/demo_edge_blend (outputs kept in " +
+  if (!difference.Identical()) {
+    throw std::runtime_error("--strategy both: the strategies' outputs differ (" + difference.Describe() +
+                             "): a bug in " + std::string(options.pass->Info().source) + " (outputs kept in " +
                              dir.Path().string() + ")");
   }
 }

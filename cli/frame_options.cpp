@@ -25,14 +25,11 @@ constexpr NamedWaveFlush kWaveFlushes[] = {
 };
 
 constexpr std::string_view kPostNone = "none";
-constexpr std::string_view kPostDemo = "demo";
 constexpr std::string_view kBothStrategies = "both";
-constexpr passes::Strategy kStrategies[] = {passes::Strategy::StencilCulled,
-                                            passes::Strategy::DeferredQueue};
 
 std::vector<std::string> StrategyChoices() {
   std::vector<std::string> choices{std::string(kBothStrategies)};
-  for (const passes::Strategy strategy : kStrategies) {
+  for (const passes::Strategy strategy : passes::kAllStrategies) {
     choices.emplace_back(passes::StrategyName(strategy));
   }
   return choices;
@@ -59,9 +56,9 @@ void AddSurfaceOptions(CLI::App& command, FrameCommandOptions& options) {
 void AddPostOptions(CLI::App& command, FrameCommandOptions& options) {
   command
       .add_option("--post", options.post,
-                  "Post pass after the frame: demo = luma edge detect + 3x3 blend on edges "
-                  "(passes/demo_edge_blend.h), none = the frame alone")
-      ->check(CLI::IsMember({std::string(kPostNone), std::string(kPostDemo)}))
+                  "Post pass after the frame, NAME[:key=value,...] (passes: " + JoinNames(passes::PassNames()) +
+                      "; their settings: aasim passes), or none = the frame alone")
+      ->type_name("PASS")
       ->capture_default_str();
   command
       .add_option("--strategy", options.strategy,
@@ -82,8 +79,9 @@ void AddRunOptions(CLI::App& command, FrameCommandOptions& options) {
 }
 
 void CheckMemory(const FrameCommandOptions& options) {
-  const std::uint64_t bytes = EstimateFrameBytes(options.width, options.height, options.Eqaa(),
-                                                 options.Strategies().size());
+  const std::uint64_t bytes =
+      EstimateFrameBytes(options.width, options.height, options.Eqaa(),
+                         options.pass ? &options.pass->Info() : nullptr, options.Strategies().size());
   if (bytes > kMaxRunBytes) {
     throw CLI::ValidationError(
         "--width " + std::to_string(options.width) + " --height " + std::to_string(options.height) +
@@ -114,12 +112,10 @@ void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush) 
 }
 
 std::vector<passes::Strategy> FrameCommandOptions::Strategies() const {
-  if (post == kPostNone) return {};
+  if (!pass) return {};
   std::vector<passes::Strategy> chosen;
-  for (const passes::Strategy each : kStrategies) {
-    if (strategy == kBothStrategies || strategy == passes::StrategyName(each)) {
-      chosen.push_back(each);
-    }
+  for (const passes::Strategy each : pass->Info().strategies) {
+    if (strategy == kBothStrategies || strategy == passes::StrategyName(each)) chosen.push_back(each);
   }
   return chosen;
 }
@@ -128,7 +124,7 @@ CLI::App* AddFrameCommand(CLI::App& app, FrameCommandOptions& options) {
   CLI::App* command = app.add_subcommand(
       "frame",
       "Render a scene on the modelled GPU (raster, pixel waves, material kernel, EQAA colour), "
-      "run the demo post pass under each dispatch strategy; write images, heat maps and "
+      "run a post pass under each dispatch strategy; write images, heat maps and "
       "per-dispatch reports");
   // Scripts append overrides to a base command line, so a repeated option means its last value.
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
@@ -142,29 +138,38 @@ CLI::App* AddFrameCommand(CLI::App& app, FrameCommandOptions& options) {
 
 void ResolveFrameOptions(FrameCommandOptions& options) {
   CheckEqaaMode(options.Eqaa());
-  // The strategy only means something to a post pass, so it is refused rather than ignored.
-  if (options.post == kPostNone && !options.strategy.empty()) {
-    throw CLI::ValidationError("--strategy " + options.strategy + " needs --post " +
-                               std::string(kPostDemo));
+  options.pass.reset();
+  if (options.post != kPostNone) {
+    try {
+      options.pass = passes::ResolvePass(options.post);
+    } catch (const passes::SettingsError& error) {
+      throw CLI::ValidationError("--post " + options.post + ": " + error.what());
+    }
   }
-  if (options.strategy.empty() && options.post != kPostNone) {
-    options.strategy = std::string(kBothStrategies);
+  // The strategy only means something to a post pass, so it is refused rather than ignored.
+  if (!options.pass && !options.strategy.empty()) {
+    throw CLI::ValidationError("--strategy " + options.strategy + " needs a post pass (--post NAME)");
+  }
+  if (options.strategy.empty() && options.pass) options.strategy = std::string(kBothStrategies);
+  if (options.pass && options.Strategies().empty()) {
+    throw CLI::ValidationError("--strategy " + options.strategy + ": pass " + std::string(options.pass->Info().name) +
+                               " does not run under it");
   }
   CheckMemory(options);
 }
 
 std::uint64_t EstimateFrameBytes(int width, int height, const fmask::EqaaConfig& eqaa,
-                                 std::size_t strategies) {
+                                 const passes::PassInfo* pass, std::size_t strategies) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
   // Resolved colour, depth, normal, object id, velocity; one shaded colour per quad pixel.
   const std::uint64_t targets = 2 * sizeof(glm::vec4) + sizeof(float) + sizeof(std::uint32_t) +
                                 sizeof(glm::vec2) + sizeof(fmask::Colour);
   const std::uint64_t images = 10 * sizeof(float) + 3;  // frame.exr's channels, colour.png
-  // Blended colour, edge mask, stencil byte, queue entry; output.png and edges.png.
-  const std::uint64_t pass = sizeof(glm::vec4) + sizeof(float) + 1 + sizeof(std::uint32_t) + 4;
+  // What one run of the pass holds, and its previews (output.png, one byte per layer channel).
+  const std::uint64_t perStrategy = pass == nullptr ? 0 : pass->bytesPerPixel + 3 + 4;
   const std::uint64_t perPixel =
       SurfaceBytesPerPixel(eqaa.coverageSamples, eqaa.depthSamples, eqaa.fragments) + targets +
-      images + strategies * pass;
+      images + strategies * perStrategy;
   return pixels * perPixel;
 }
 

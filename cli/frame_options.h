@@ -4,6 +4,7 @@
 // runs before any work; violations are CLI::ValidationError (exit 2).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,7 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "fmask/eqaa_surface.h"
-#include "passes/demo_edge_blend.h"
+#include "passes/registry.h"
 #include "sim/wave.h"
 
 namespace cli {
@@ -28,10 +29,13 @@ struct FrameCommandOptions {
   std::string policy = "hraa";
   std::string gpu;  // name or file; default set by AddFrameCommand: sim::kDefaultGpuName
   std::string flush = "mix";
-  std::string post = "demo";
-  std::string strategy;  // empty until ResolveFrameOptions: "both" with --post demo
+  std::string post = "demo";  // NAME[:key=value,...] or "none"
+  std::string strategy;  // empty until ResolveFrameOptions: "both" with a post pass
   int threads = 0;       // default set by AddFrameCommand: every core
   std::string out;
+
+  // Filled by ResolveFrameOptions: the pass --post names, with its settings.
+  std::optional<passes::PassConfig> pass;
 
   fmask::EqaaConfig Eqaa() const { return {samples, depthSamples, fragments}; }
   // The strategies the post pass runs under, in run order; empty with --post none.
@@ -46,9 +50,9 @@ void ResolveFrameOptions(FrameCommandOptions& options);
 
 // Bytes held at once: the EQAA depth and colour surfaces with one layer of quads, the
 // pipeline's pixel targets and shaded quad colours, the frame's output images, and per
-// strategy the pass's output, edge mask, stencil, queue and previews.
+// strategy what the pass declares (PassInfo::bytesPerPixel) and its previews.
 std::uint64_t EstimateFrameBytes(int width, int height, const fmask::EqaaConfig& eqaa,
-                                 std::size_t strategies);
+                                 const passes::PassInfo* pass, std::size_t strategies);
 
 sim::WaveFlush WaveFlushByName(std::string_view name);
 

@@ -2,6 +2,9 @@
 
 #include "cli/frame_output.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/vec2.hpp>
 
 #include "cli/image_io.h"
@@ -35,6 +38,20 @@ std::vector<std::uint8_t> MaskImage(std::span<const float> mask) {
   pixels.reserve(mask.size());
   for (const float value : mask) pixels.push_back(EncodeSrgb8(value));
   return pixels;
+}
+
+void WriteLayerPng(const std::filesystem::path& path, const passes::PassLayer& layer) {
+  const std::size_t channels = layer.channels.size();
+  const int pngChannels = channels == 1 ? 1 : 3;
+  std::vector<std::uint8_t> pixels;
+  pixels.reserve(layer.values.size() / channels * static_cast<std::size_t>(pngChannels));
+  auto byte = [](float value) { return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); };
+  for (std::size_t at = 0; at < layer.values.size(); at += channels) {
+    for (int c = 0; c < pngChannels; ++c) {
+      pixels.push_back(static_cast<std::size_t>(c) < channels ? byte(layer.values[at + static_cast<std::size_t>(c)]) : 0);
+    }
+  }
+  WritePng(path, layer.width, layer.height, pngChannels, pixels);
 }
 
 void WriteFrameExr(const std::filesystem::path& path, const sim::FramePipeline& pipeline) {

@@ -10,6 +10,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "passes/pass.h"
 #include "sim/frame.h"
 
 namespace cli {
@@ -19,27 +20,9 @@ std::vector<std::uint8_t> SrgbImage(std::span<const glm::vec4> texels);
 // 8-bit grey of a 0/1 mask: black and white come out exactly.
 std::vector<std::uint8_t> MaskImage(std::span<const float> mask);
 
-// Where two same-sized images differ bit for bit: how many pixels, and the first in row order.
-// Bitwise, so -0 against +0 or two NaN payloads count: the dispatch strategies promise identical
-// bits, not equal values.
-struct ImageDifference {
-  std::uint64_t pixels = 0;
-  int x = 0, y = 0;
-};
-template <typename T>
-ImageDifference BitwiseDifference(const sim::Texture2D<T>& a, const sim::Texture2D<T>& b) {
-  ImageDifference difference;
-  for (int y = 0; y < a.Height(); ++y) {
-    for (int x = 0; x < a.Width(); ++x) {
-      if (std::memcmp(&a.At(x, y), &b.At(x, y), sizeof(T)) == 0) continue;
-      if (difference.pixels++ == 0) {
-        difference.x = x;
-        difference.y = y;
-      }
-    }
-  }
-  return difference;
-}
+// A pass layer as a PNG: values in [0, 1] scaled linearly to 8 bits (layers are data such as
+// edges and weights, not colour); 1 channel as grey, 2 as red/green, 3 or 4 as RGB.
+void WriteLayerPng(const std::filesystem::path& path, const passes::PassLayer& layer);
 
 // Channels R, G, B (resolved colour), depth, normal.X/Y/Z, objectId (-1 for the background),
 // velocity.X/Y. Throws OutputError naming the path.

@@ -28,12 +28,6 @@ std::size_t PixelCount(int width, int height) {
 
 }  // namespace
 
-std::uint8_t EncodeSrgb8(float linear) {
-  const float c = std::clamp(linear, 0.0f, 1.0f);
-  const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
-}
-
 void WritePng(const std::filesystem::path& path, int width, int height, int channels,
               std::span<const std::uint8_t> pixels) {
   if (channels < 1 || channels > 4 || pixels.size() != PixelCount(width, height) * channels) {

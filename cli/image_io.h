@@ -9,10 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "sim/colour.h"
+
 namespace cli {
 
-// Linear [0, 1] -> 8-bit sRGB (IEC 61966-2-1 transfer function); out-of-range values clamp.
-std::uint8_t EncodeSrgb8(float linear);
+// Linear [0, 1] -> 8-bit sRGB; out-of-range values clamp.
+using sim::EncodeSrgb8;
 
 // `pixels` holds width * height * channels bytes (1 = grey, 3 = RGB, 4 = RGBA).
 // Throws OutputError naming the path.

@@ -33,8 +33,8 @@ void PrintQuality(std::ostream& out, const ScoredImage& image) {
 }
 
 void PrintPass(std::ostream& out, const Study& study, const StudyPass& pass) {
-  out << "\nstencil vs queue: " << pass.studiedDispatch << " on " << pass.inputFrame << " (" << pass.edgePixels
-      << " edge pixels; estimated µs: docs/timing-model.md)\n";
+  out << "\nstencil vs queue: " << pass.studiedDispatch << " on " << pass.inputFrame << " (" << pass.workItems
+      << " work-set pixels; estimated µs: docs/timing-model.md)\n";
   if (pass.runs.size() == 2) {
     const StudyPassRun &a = pass.runs[0], &b = pass.runs[1];
     const std::span<const sim::DispatchReport> all(study.dispatches);
@@ -44,8 +44,7 @@ void PrintPass(std::ostream& out, const Study& study, const StudyPass& pass) {
                             all.subspan(b.firstDispatch, b.endDispatch - b.firstDispatch));
   }
   out << "identical output: "
-      << (pass.difference.pixels == 0 ? "yes (output and edge mask bit-identical)"
-                                    : "NO, " + std::to_string(pass.difference.pixels) + " pixels differ")
+      << (pass.difference.Identical() ? "yes (output and layers bit-identical)" : "NO, " + pass.difference.Describe())
       << '\n';
 }
 
@@ -89,11 +88,10 @@ void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std:
   dir.Commit("report.json");
   PrintSummary(summary, study, resolved, dir.Path());
   for (const StudyPass& pass : study.passes) {
-    if (pass.difference.pixels == 0) continue;
-    throw std::runtime_error("post pass " + pass.name + ": the strategies' outputs differ in " +
-                             std::to_string(pass.difference.pixels) + " pixels, first at (" +
-                             std::to_string(pass.difference.x) + ", " + std::to_string(pass.difference.y) +
-                             "): a bug in passes/ (outputs kept in " + dir.Path().string() + ")");
+    if (pass.difference.Identical()) continue;
+    throw std::runtime_error("post pass " + pass.name + ": the strategies' outputs differ (" +
+                             pass.difference.Describe() + "): a bug in passes/ (outputs kept in " +
+                             dir.Path().string() + ")");
   }
 }
 

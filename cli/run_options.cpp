@@ -10,7 +10,7 @@
 
 #include "cli/common_options.h"
 #include "cli/frame_options.h"
-#include "cli/post_passes.h"
+#include "passes/registry.h"
 
 namespace cli {
 namespace {
@@ -58,20 +58,19 @@ bool ParseMode(std::string_view text, fmask::EqaaConfig& mode) {
   return at == text.size();
 }
 
-std::vector<std::string> ResolvePasses(const std::string& post) {
+std::vector<passes::PassConfig> ResolvePasses(const std::string& post) {
   if (post == kNoPasses) return {};
-  if (post == kAllPasses) return PostPassNames();
-  std::vector<std::string> chosen;
-  for (const std::string_view name : SplitList(post)) {
-    try {
-      PostPassByName(name);
-    } catch (const std::invalid_argument& error) {
-      throw CLI::ValidationError("--post " + post + ": " + error.what());
+  std::vector<passes::PassConfig> chosen;
+  try {
+    for (const std::string& spec : post == kAllPasses ? passes::PassNames() : passes::SplitPassList(post)) {
+      passes::PassConfig config = passes::ResolvePass(spec);
+      const bool repeated = std::any_of(chosen.begin(), chosen.end(),
+                                        [&](const passes::PassConfig& each) { return each.pass == config.pass; });
+      if (repeated) throw passes::SettingsError("'" + std::string(config.Info().name) + "' is named twice");
+      chosen.push_back(std::move(config));
     }
-    if (std::find(chosen.begin(), chosen.end(), name) != chosen.end()) {
-      throw CLI::ValidationError("--post " + post + ": '" + std::string(name) + "' is named twice");
-    }
-    chosen.emplace_back(name);
+  } catch (const passes::SettingsError& error) {
+    throw CLI::ValidationError("--post " + post + ": " + error.what());
   }
   return chosen;
 }
@@ -96,8 +95,9 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
       ->capture_default_str();
   command
       .add_option("--post", options.post,
-                  "Post passes, comma-separated, run under every dispatch strategy they have: " +
-                      JoinNames(PostPassNames()) + ", or all, or none")
+                  "Post passes, comma-separated, each NAME[:key=value,...], run under every dispatch "
+                  "strategy they have: " +
+                      JoinNames(passes::PassNames()) + ", or all, or none (settings: aasim passes)")
       ->type_name("LIST")
       ->capture_default_str();
 }
@@ -143,8 +143,7 @@ void CheckGroundTruthSamples(int samples) {
 }
 
 void CheckMemory(const RunCommandOptions& options) {
-  const std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes,
-                                               options.postPasses.size());
+  const std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, options.postPasses);
   if (bytes > kMaxRunBytes) {
     throw CLI::ValidationError("--width " + std::to_string(options.width) + " --height " +
                                std::to_string(options.height) + " --modes " + options.modes +
@@ -206,21 +205,24 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
 }
 
 std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
-                               std::size_t postPasses) {
+                               std::span<const passes::PassConfig> postPasses) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
   std::uint64_t largestFrame = 0;
   for (const fmask::EqaaConfig& mode : modes) {
-    largestFrame = std::max(largestFrame, EstimateFrameBytes(1, 1, mode, 0));
+    largestFrame = std::max(largestFrame, EstimateFrameBytes(1, 1, mode, nullptr, 0));
   }
-  // Ground truth (colour, coverage, edge) and one metrics evaluation's maps and scratch.
+  // Ground truth (colour, coverage, edge) and one metrics evaluation's maps and scratch
+  // (passes/metrics.cpp: SSIM's and FLIP's per-pixel planes, 24 floats at most at once).
   const std::uint64_t groundTruth = sizeof(glm::vec3) + sizeof(float) + 1;
   const std::uint64_t metrics = 3 * sizeof(float) + 24 * sizeof(float);
   // Kept per mode: resolved colour, three error maps, the EQAA planes' resolve and counts.
   const std::uint64_t perMode = sizeof(glm::vec4) + 3 * sizeof(float) + 8 * sizeof(float);
-  // Per pass and strategy: output, edges, stencil, queue entry; per pass its error maps.
-  const std::uint64_t perPass = 2 * (sizeof(glm::vec4) + sizeof(float) + 1 + sizeof(std::uint32_t)) +
-                                3 * sizeof(float);
-  return pixels * (largestFrame + groundTruth + metrics + modes.size() * perMode + postPasses * perPass);
+  // Per pass: what each strategy's run holds (the pass declares it) and the kept error maps.
+  std::uint64_t passes = 0;
+  for (const passes::PassConfig& pass : postPasses) {
+    passes += pass.Info().strategies.size() * pass.Info().bytesPerPixel + 3 * sizeof(float);
+  }
+  return pixels * (largestFrame + groundTruth + metrics + modes.size() * perMode + passes);
 }
 
 }  // namespace cli

@@ -4,6 +4,7 @@
 // before any work; violations are CLI::ValidationError (exit 2).
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "fmask/eqaa_surface.h"
+#include "passes/registry.h"
 
 namespace cli {
 
@@ -47,7 +49,7 @@ struct RunCommandOptions {
 
   // Filled by ResolveRunOptions.
   std::vector<fmask::EqaaConfig> eqaaModes;
-  std::vector<std::string> postPasses;
+  std::vector<passes::PassConfig> postPasses;
   ProgressMode progressMode = ProgressMode::Auto;
 };
 
@@ -65,6 +67,6 @@ std::vector<fmask::EqaaConfig> ParseEqaaModes(std::string_view list);
 // Bytes held at once: the ground truth and its metrics, one frame pipeline at the largest mode,
 // every mode's kept images, and the post passes' outputs.
 std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
-                               std::size_t postPasses);
+                               std::span<const passes::PassConfig> postPasses);
 
 }  // namespace cli

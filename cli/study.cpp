@@ -13,7 +13,6 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "cli/frame_options.h"
-#include "cli/post_passes.h"
 
 namespace cli {
 namespace {
@@ -175,35 +174,42 @@ class StudyRunner {
     if (onFrame) onFrame(frame, pipeline);
     // Post-process AA works on the aliased frame a renderer without MSAA produces: the first mode.
     if (mode == 0) {
-      for (const std::string& name : options_.postPasses) RunPass(PostPassByName(name), pipeline, label);
+      for (const passes::PassConfig& pass : options_.postPasses) RunPass(pass, pipeline, label);
     }
     study_.frames.push_back(std::move(frame));
   }
 
-  void RunPass(const PostPass& pass, const sim::FramePipeline& pipeline, const std::string& frameLabel) {
-    StudyPass result{.name = std::string(pass.name),
-                     .studiedDispatch = std::string(pass.studiedDispatch),
+  void RunPass(const passes::PassConfig& config, const sim::FramePipeline& pipeline, const std::string& frameLabel) {
+    const passes::PassInfo& info = config.Info();
+    const std::string name(info.name);
+    StudyPass result{.name = name,
+                     .description = std::string(info.description),
+                     .studiedDispatch = std::string(info.studiedDispatches.front()),
+                     .settings = passes::DescribeSettings(config.settings),
                      .inputFrame = frameLabel,
-                     .image = {std::string(pass.name), "passes/" + std::string(pass.name), {"pass output", 1, 1}, {}}};
-    for (const passes::Strategy strategy : pass.strategies) {
+                     .image = {name, "passes/" + name, {"pass output", 1, 1}, {}}};
+    std::optional<passes::PassOutput> first;
+    for (const passes::Strategy strategy : info.strategies) {
       const std::string strategyName(passes::StrategyName(strategy));
-      StudyPassRun run{.strategy = strategy, .firstDispatch = machine_.Reports().size(), .edges = {"edges", 1, 1}};
-      PostPassOutput output = log_.Step("pass " + std::string(pass.name) + " [" + strategyName + "]",
-                                        [&] { return pass.run(machine_, pipeline, strategy); });
+      StudyPassRun run{.strategy = strategy, .firstDispatch = machine_.Reports().size(), .endDispatch = 0, .layers = {}};
+      // One instance per strategy: a pass with history must not carry one strategy's into the other's.
+      const std::unique_ptr<passes::Pass> pass = config.Make();
+      passes::PassOutput output = log_.Step("pass " + name + " [" + strategyName + "]", [&] {
+        return pass->Run(machine_, passes::FrameInputsOf(pipeline), strategy);
+      });
       run.endDispatch = machine_.Reports().size();
       Tag(frameLabel, strategyName);
-      if (result.runs.empty()) {
-        result.image.colour = std::move(output.image);
-        result.edgePixels = output.edgePixels;
-      } else if (result.difference.pixels == 0) {
-        result.difference = BitwiseDifference(result.image.colour, output.image);
-        if (result.difference.pixels == 0) result.difference = BitwiseDifference(result.runs.front().edges, output.edges);
+      run.layers = output.layers;
+      if (!first) {
+        first = std::move(output);
+      } else if (result.difference.Identical()) {
+        result.difference = passes::CompareOutputs(*first, output);
       }
-      run.edges = std::move(output.edges);
       result.runs.push_back(std::move(run));
     }
-    result.image.quality = log_.Step("metrics " + std::string(pass.name),
-                                     [&] { return Score(result.image.colour, study_.groundTruth); });
+    result.workItems = first->workItems;
+    result.image.colour = std::move(first->colour);
+    result.image.quality = log_.Step("metrics " + name, [&] { return Score(result.image.colour, study_.groundTruth); });
     study_.passes.push_back(std::move(result));
   }
 

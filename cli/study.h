@@ -19,7 +19,8 @@
 #include "cli/run_options.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
-#include "passes/demo_edge_blend.h"
+#include "passes/compare.h"
+#include "passes/registry.h"
 #include "passes/metrics.h"
 #include "scenes/ground_truth.h"
 #include "sim/dispatch.h"
@@ -50,19 +51,20 @@ struct StudyFrame {
 struct StudyPassRun {
   passes::Strategy strategy;
   std::size_t firstDispatch = 0, endDispatch = 0;  // [first, end) in Study::dispatches
-  sim::Texture2D<float> edges;
+  std::vector<passes::PassLayer> layers;
 };
 
 struct StudyPass {
   std::string name;
+  std::string description;
   std::string studiedDispatch;
+  std::string settings;    // "threshold=0.1"
   std::string inputFrame;  // label of the frame it post-processed
   ScoredImage image;       // the first strategy's output; the others are bit-identical or flagged
-  std::uint64_t edgePixels = 0;
+  std::uint64_t workItems = 0;
   std::vector<StudyPassRun> runs{};
-  // Where a strategy's output, else its edge mask, differs from the first strategy's (pixels 0 =
-  // identical).
-  ImageDifference difference{};
+  // The first difference of a later strategy's output from the first's (passes/compare.h).
+  passes::StrategyDifference difference{};
 };
 
 struct StudyGroundTruth {

@@ -13,10 +13,9 @@
 #include "cli/eqaa_output.h"
 #include "cli/frame_output.h"
 #include "cli/image_io.h"
-#include "cli/post_passes.h"
 #include "cli/report_images.h"
 #include "cli/text_io.h"
-#include "passes/demo_edge_blend.h"
+#include "passes/registry.h"
 
 namespace cli {
 namespace {
@@ -75,13 +74,22 @@ void StageGroundTruth(OutputDir& dir, const StudyGroundTruth& truth) {
   WritePng(dir.Stage(kImages + "ground-truth/edges.png"), image.width, image.height, 1, MaskImage(truth.edgeMask));
 }
 
+void StageLayer(OutputDir& dir, const std::string& folder, const passes::PassLayer& layer) {
+  WriteLayerPng(dir.Stage(folder + layer.name + ".png"), layer);
+}
+
+nlohmann::ordered_json PassNamesJson(std::span<const passes::PassConfig> passes) {
+  nlohmann::ordered_json names = nlohmann::ordered_json::array();
+  for (const passes::PassConfig& pass : passes) names.push_back(pass.Info().name);
+  return names;
+}
+
 void StagePassFiles(OutputDir& dir, const StudyPass& pass) {
   StageColour(dir, kImages + pass.image.folder + "/output.png", pass.image.colour);
   StageErrorFiles(dir, pass.image);
   for (const StudyPassRun& run : pass.runs) {
-    const std::string path =
-        kImages + pass.image.folder + "/" + std::string(passes::StrategyName(run.strategy)) + "/edges.png";
-    WritePng(dir.Stage(path), run.edges.Width(), run.edges.Height(), 1, MaskImage(run.edges.Texels()));
+    const std::string folder = kImages + pass.image.folder + "/" + std::string(passes::StrategyName(run.strategy)) + "/";
+    for (const passes::PassLayer& layer : run.layers) StageLayer(dir, folder, layer);
   }
 }
 
@@ -153,9 +161,12 @@ nlohmann::ordered_json PassJson(const Study& study, const StudyPass& pass) {
           {"input_frame", pass.inputFrame},
           {"studied_dispatch", pass.studiedDispatch},
           {"folder", kImages + pass.image.folder},
-          {"edge_pixels", pass.edgePixels},
-          {"strategies_identical", pass.difference.pixels == 0},
-          {"differing_pixels", pass.difference.pixels},
+          {"settings", pass.settings},
+          {"edge_pixels", pass.workItems},
+          {"strategies_identical", pass.difference.Identical()},
+          {"differing_pixels", pass.difference.pixels.pixels},
+          {"difference", pass.difference.Identical() ? nlohmann::ordered_json(nullptr)
+                                                     : nlohmann::ordered_json(pass.difference.Describe())},
           {"quality", QualityJson(pass.image.quality.scores)},
           {"strategies", runs}};
 }
@@ -388,15 +399,13 @@ std::span<const sim::DispatchReport> RunDispatches(const Study& study, const Stu
 ReportSection PassSection(const Study& study, const StudyPass& pass) {
   ReportSection section{"Dispatch strategies: " + pass.name, {}, {}, {}, {}};
   section.paragraphs.push_back(
-      std::string(PostPassByName(pass.name).description) + ", on the " + pass.inputFrame + " frame; " +
-      std::to_string(pass.edgePixels) + " edge pixels. Stencil: a full-screen pixel shader culled by stencil "
-      "(quads run when any pixel passes, 16 quads per wave). Queue: edge pixels appended to a buffer, then an "
-      "indirect compute dispatch over exactly that many items.");
-  section.paragraphs.push_back(
-      pass.difference.pixels == 0
-          ? "The strategies' outputs and edge masks are bit-identical."
-          : "The strategies' outputs DIFFER in " + std::to_string(pass.difference.pixels) + " pixels, first at (" +
-                std::to_string(pass.difference.x) + ", " + std::to_string(pass.difference.y) + "): a bug.");
+      pass.description + " (" + pass.settings + "), on the " + pass.inputFrame + " frame; " +
+      std::to_string(pass.workItems) + " pixels in its work set. Stencil: a full-screen pixel shader culled by "
+      "stencil (quads run when any pixel passes, 16 quads per wave). Queue: the work-set pixels appended to a "
+      "buffer, then an indirect compute dispatch over exactly that many items.");
+  section.paragraphs.push_back(pass.difference.Identical()
+                                   ? "The strategies' outputs and layers are bit-identical."
+                                   : "The strategies' outputs DIFFER: " + pass.difference.Describe() + ". A bug.");
   if (pass.runs.size() == 2) {
     const StudyPassRun &a = pass.runs[0], &b = pass.runs[1];
     std::vector<std::vector<std::string>> rows =
@@ -459,7 +468,7 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"policy", options.policy},
           {"gpu", options.gpu},
           {"flush", options.flush},
-          {"post", options.postPasses},
+          {"post", PassNamesJson(options.postPasses)},
           {"gt_samples", options.groundTruthSamples},
           {"cache", options.noCache ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cache)},
           {"threads", threads}};

@@ -22,6 +22,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "sim/colour.h"
+
 namespace passes {
 
 namespace {
@@ -181,20 +183,7 @@ double Mean(std::span<const float> map) {
   return sum / static_cast<double>(map.size());
 }
 
-// ---- sRGB encoding, PSNR, SSIM --------------------------------------------------------------
-
-// IEC 61966-2-1 (sRGB) transfer function, after clamping to [0,1].
-float EncodeSrgb(float linear) {
-  const float c = std::clamp(linear, 0.0f, 1.0f);
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
-
-glm::vec3 EncodeSrgb(const glm::vec4& linear) {
-  return {EncodeSrgb(linear.r), EncodeSrgb(linear.g), EncodeSrgb(linear.b)};
-}
-
-// ITU-R BT.709 luma weights, applied to the encoded channels (Y', not luminance).
-float Luma(const glm::vec3& encoded) { return 0.2126f * encoded.r + 0.7152f * encoded.g + 0.0722f * encoded.b; }
+// ---- PSNR, SSIM --------------------------------------------------------------
 
 double PsnrFromMse(double mse) {
   // aa-facts §9.2: PSNR = 10 log10(MAX^2 / MSE) with MAX = 1; identical images have no error.
@@ -477,7 +466,7 @@ std::vector<float> SquaredErrorMap(const ImageView& test, const ImageView& refer
   const int w = test.width;
   ForEachRowBlock(test.height, [&](int y0, int y1) {
     for (std::size_t i = PixelCount(w, y0); i < PixelCount(w, y1); ++i) {
-      const glm::vec3 d = EncodeSrgb(test.pixels[i]) - EncodeSrgb(reference.pixels[i]);
+      const glm::vec3 d = sim::EncodeSrgb(glm::vec3(test.pixels[i])) - sim::EncodeSrgb(glm::vec3(reference.pixels[i]));
       map[i] = (d.r * d.r + d.g * d.g + d.b * d.b) / 3.0f;
     }
   });
@@ -495,8 +484,8 @@ MetricMap Ssim(const ImageView& test, const ImageView& reference) {
   std::vector<float> lumaTest(test.pixels.size()), lumaReference(test.pixels.size());
   ForEachRowBlock(h, [&](int y0, int y1) {
     for (std::size_t i = PixelCount(w, y0); i < PixelCount(w, y1); ++i) {
-      lumaTest[i] = Luma(EncodeSrgb(test.pixels[i]));
-      lumaReference[i] = Luma(EncodeSrgb(reference.pixels[i]));
+      lumaTest[i] = sim::Rec709Luma(sim::EncodeSrgb(glm::vec3(test.pixels[i])));
+      lumaReference[i] = sim::Rec709Luma(sim::EncodeSrgb(glm::vec3(reference.pixels[i])));
     }
   });
   const Kernel<double> window = SsimWindow();

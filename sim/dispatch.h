@@ -129,6 +129,16 @@ struct ComputeGrid {
   glm::ivec3 groupSize{64, 1, 1};
 };
 
+// A queued pixel as deferred queues store it (aa-facts §3 packs Y<<20 | X<<8 with extra bits;
+// a plain pixel queue needs only the position): y in the high 16 bits, x in the low 16.
+static_assert(raster::kMaxDimension <= 0x10000, "pixel items hold 16-bit coordinates");
+constexpr std::uint32_t PackPixelItem(int x, int y) {
+  return static_cast<std::uint32_t>(y) << 16 | static_cast<std::uint32_t>(x);
+}
+constexpr glm::ivec2 UnpackPixelItem(std::uint32_t item) {
+  return {static_cast<int>(item & 0xFFFFu), static_cast<int>(item >> 16)};
+}
+
 struct IndirectCall {
   const Buffer<std::uint32_t>* arguments = nullptr;  // {groupsX, groupsY, groupsZ} at `offset`
   std::size_t offset = 0;                             // element index
@@ -137,6 +147,10 @@ struct IndirectCall {
   // masked off by the kernel's bounds check and count as empty lanes.
   const Buffer<std::uint32_t>* itemCount = nullptr;
   std::size_t itemCountIndex = 0;
+  // Optional queue of PackPixelItem items, one per thread: the machine loads thread i's item
+  // (one fetch, counted as the kernel's own load would be), sets lane.pixel and attributes the
+  // lane to that pixel in the heat map. Needs Dispatch::SetPixelGrid for the heat map's size.
+  std::optional<BufferView<std::uint32_t>> pixelItems = std::nullopt;
 };
 
 class Machine {
@@ -171,6 +185,7 @@ class Machine {
     std::size_t itemCountByte = 0;
     int argumentSlot = -1;   // binding of the indirect arguments, read by the command processor
     std::size_t argumentByte = 0;
+    const BufferView<std::uint32_t>* pixelItems = nullptr;
   };
   struct IndirectLaunch {
     glm::ivec3 groups{0};

@@ -209,7 +209,8 @@ DispatchReport Machine::ComputeIndirect(Dispatch& dispatch, const IndirectCall& 
   ValidateGroup(dispatch, call.groupSize);
   DispatchReport report;
   report.kind = DispatchKind::IndirectCompute;
-  const IndirectLaunch launch = ReadIndirectArguments(dispatch, call);
+  IndirectLaunch launch = ReadIndirectArguments(dispatch, call);
+  if (call.pixelItems) launch.limits.pixelItems = &*call.pixelItems;
   RunGroups(dispatch, std::move(report), launch.groups * call.groupSize, call.groupSize, launch.limits, stages...);
   reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
   return reports_.back();
@@ -257,9 +258,11 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
                                                        (lane.threadId.y + static_cast<long long>(launched.y) * lane.threadId.z);
         const bool inGrid = glm::all(glm::lessThan(lane.threadId, threads));
         live[static_cast<std::size_t>(i)] = inGrid && (!limits.itemCount || linear < *limits.itemCount);
-        attribution[static_cast<std::size_t>(i)] =
-            live[static_cast<std::size_t>(i)] && dispatch.pixelGrid_ ? glm::ivec2(lane.threadId) : glm::ivec2(-1);
-        lane.attribution = &attribution[static_cast<std::size_t>(i)];
+        lane.pixel = dispatch.pixelGrid_ ? glm::ivec2(lane.threadId) : glm::ivec2(-1);
+        if (limits.pixelItems != nullptr && live[static_cast<std::size_t>(i)]) {
+          lane.pixel = UnpackPixelItem(limits.pixelItems->Load(lane, static_cast<std::size_t>(linear)));
+        }
+        attribution[static_cast<std::size_t>(i)] = live[static_cast<std::size_t>(i)] ? lane.pixel : glm::ivec2(-1);
         if (live[static_cast<std::size_t>(i)]) {
           waveExec[static_cast<std::size_t>(lane.waveInGroup)] |= std::uint64_t{1} << lane.lane;
         }

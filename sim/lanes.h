@@ -95,7 +95,9 @@ struct ComputeLane : LaneBase {
   glm::ivec3 localId{0};
   int localIndex = 0;      // wave * 64 + lane (hw-facts §6.2)
   int waveInGroup = 0;
-  glm::ivec2* attribution = nullptr;  // heat-map pixel of this thread, (-1, -1) for none
+  // The pixel this thread works on, also its heat-map pixel: threadId.xy in a dispatch over a
+  // pixel grid, the queued item's pixel in an indirect dispatch over pixel items, else (-1, -1).
+  glm::ivec2 pixel{-1};
 
   // Group shared memory, indexed in elements of T; bounds-checked against the kernel's declared
   // LDS size.
@@ -113,8 +115,6 @@ struct ComputeLane : LaneBase {
     std::memcpy(LdsAddress(index * sizeof(T), sizeof(T)), &value, sizeof(T));
     chunk->lanes.ldsBytesWritten += sizeof(T);
   }
-  // Names the pixel this lane worked on, for the heat map (indirect dispatches over queued items).
-  void AttributeTo(int px, int py) const { *attribution = {px, py}; }
 
  private:
   std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const;

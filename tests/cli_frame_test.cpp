@@ -299,7 +299,7 @@ std::vector<BadInput> BadInputs() {
        "4S/4Z/8F", "8S/4Z/2F", 2},
       {"UnknownStrategy", fixed({"--strategy", "foo"}), "--strategy", "foo not in", 2},
       {"StrategyWithoutPost", fixed({"--post", "none", "--strategy", "queue"}), "--strategy queue",
-       "needs --post demo", 2},
+       "needs a post pass", 2},
       {"UnknownFlush", fixed({"--flush", "sometimes"}), "--flush", "not in", 2},
       {"WidthZero", fixed({"--width", "0"}), "--width", "not in range 1 to 16384", 2},
       {"OverMemoryLimit",
@@ -587,8 +587,12 @@ TEST(CliFrameInput, TexturedMaterialsCarryFactorTextureAndTexcoords) {
 
 TEST(CliFrameOptions, EveryStrategyCountsInTheMemoryEstimate) {
   const fmask::EqaaConfig eqaa{8, 4, 2};
-  EXPECT_LT(cli::EstimateFrameBytes(64, 48, eqaa, 1), cli::EstimateFrameBytes(64, 48, eqaa, 2));
-  EXPECT_LT(cli::EstimateFrameBytes(64, 48, eqaa, 0), cli::EstimateFrameBytes(128, 48, eqaa, 0));
+  const passes::PassInfo& demo = passes::PassByName("demo").info();
+  EXPECT_LT(cli::EstimateFrameBytes(64, 48, eqaa, &demo, 1), cli::EstimateFrameBytes(64, 48, eqaa, &demo, 2));
+  EXPECT_LT(cli::EstimateFrameBytes(64, 48, eqaa, nullptr, 0), cli::EstimateFrameBytes(128, 48, eqaa, nullptr, 0));
+  // What the pass declares is what the estimate adds per strategy (plus its previews).
+  EXPECT_GE(cli::EstimateFrameBytes(64, 48, eqaa, &demo, 1) - cli::EstimateFrameBytes(64, 48, eqaa, nullptr, 0),
+            64u * 48u * demo.bytesPerPixel);
 }
 
 }  // namespace

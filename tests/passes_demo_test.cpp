@@ -6,7 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "passes/demo_edge_blend.h"
+#include "passes/demo/demo.h"
+#include "passes/registry.h"
 #include "raster_test_util.h"
 
 namespace passes {
@@ -27,6 +28,16 @@ sim::Texture2D<glm::vec4> Rectangles(int w, int h, std::uint64_t seed) {
   return image;
 }
 
+PassOutput RunDemo(sim::Machine& machine, const sim::Texture2D<glm::vec4>& input, Strategy strategy) {
+  const std::unique_ptr<Pass> pass = demo::Make(PassSettings("demo", demo::Info().settings));
+  return pass->Run(machine, FrameInputs{.colour = &input}, strategy);
+}
+
+float EdgeAt(const PassOutput& output, int x, int y) {
+  const PassLayer& edges = output.layers.at(0);
+  return edges.values.at(static_cast<std::size_t>(y) * static_cast<std::size_t>(edges.width) + static_cast<std::size_t>(x));
+}
+
 // Slow host reference of the same rule, written without the machine.
 float RefLuma(const glm::vec4& c) {
   auto srgb = [](float v) {
@@ -40,8 +51,8 @@ TEST(PassesDemo, BothStrategiesMatchTheHostReference) {
   const int w = 67, h = 45;  // not multiples of 8: partial groups and partial quads
   const sim::Texture2D<glm::vec4> input = Rectangles(w, h, 11);
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  const DemoEdgeBlendResult stencil = RunDemoEdgeBlend(machine, input, Strategy::StencilCulled);
-  const DemoEdgeBlendResult queue = RunDemoEdgeBlend(machine, input, Strategy::DeferredQueue);
+  const PassOutput stencil = RunDemo(machine, input, Strategy::StencilCulled);
+  const PassOutput queue = RunDemo(machine, input, Strategy::DeferredQueue);
   auto at = [&](int x, int y) { return input.At(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1)); };
   std::uint64_t edges = 0;
   for (int y = 0; y < h; ++y) {
@@ -61,48 +72,57 @@ TEST(PassesDemo, BothStrategiesMatchTheHostReference) {
         }
         expected = sum / 9.0f;
       }
-      ASSERT_EQ(stencil.edges.At(x, y), edge ? 1.0f : 0.0f) << x << "," << y;
-      ASSERT_EQ(queue.edges.At(x, y), edge ? 1.0f : 0.0f) << x << "," << y;
+      ASSERT_EQ(EdgeAt(stencil, x, y), edge ? 1.0f : 0.0f) << x << "," << y;
+      ASSERT_EQ(EdgeAt(queue, x, y), edge ? 1.0f : 0.0f) << x << "," << y;
       for (int c = 0; c < 4; ++c) {
-        ASSERT_NEAR(stencil.output.At(x, y)[c], expected[c], 1e-6f) << x << "," << y;
-        ASSERT_EQ(stencil.output.At(x, y)[c], queue.output.At(x, y)[c]) << x << "," << y;
+        ASSERT_NEAR(stencil.colour.At(x, y)[c], expected[c], 1e-6f) << x << "," << y;
+        ASSERT_EQ(stencil.colour.At(x, y)[c], queue.colour.At(x, y)[c]) << x << "," << y;
       }
     }
   }
   EXPECT_GT(edges, 100u);
-  EXPECT_EQ(stencil.edgePixels, edges);
-  EXPECT_EQ(queue.edgePixels, edges);
+  EXPECT_EQ(stencil.workItems, edges);
+  EXPECT_EQ(queue.workItems, edges);
 }
 
 TEST(PassesDemo, QueueBlendUsesALanePerEdgeWhileTheStencilPassWastesQuadLanes) {
   const int w = 128, h = 96;
   const sim::Texture2D<glm::vec4> input = Rectangles(w, h, 5);
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  const DemoEdgeBlendResult stencil = RunDemoEdgeBlend(machine, input, Strategy::StencilCulled);
-  const DemoEdgeBlendResult queue = RunDemoEdgeBlend(machine, input, Strategy::DeferredQueue);
-  ASSERT_EQ(stencil.dispatches.size(), 2u);
-  ASSERT_EQ(queue.dispatches.size(), 3u);
-  const sim::LaneCounters& ps = stencil.dispatches[1].lanes;
-  const sim::LaneCounters& cs = queue.dispatches[2].lanes;
-  EXPECT_EQ(stencil.dispatches[1].name, "demo/blend");
-  EXPECT_EQ(queue.dispatches[2].kind, sim::DispatchKind::IndirectCompute);
-  EXPECT_EQ(ps.lanesActive, stencil.edgePixels);
-  EXPECT_EQ(cs.lanesActive, queue.edgePixels);
-  EXPECT_EQ(cs.waves, (queue.edgePixels + 63) / 64);
+  const PassOutput stencil = RunDemo(machine, input, Strategy::StencilCulled);
+  const PassOutput queue = RunDemo(machine, input, Strategy::DeferredQueue);
+  const std::vector<sim::DispatchReport>& reports = machine.Reports();
+  ASSERT_EQ(reports.size(), 2u + 3u);
+  const sim::LaneCounters& ps = reports[1].lanes;
+  const sim::LaneCounters& cs = reports[4].lanes;
+  EXPECT_EQ(reports[1].name, "demo/blend");
+  EXPECT_EQ(reports[4].kind, sim::DispatchKind::IndirectCompute);
+  EXPECT_EQ(ps.lanesActive, stencil.workItems);
+  EXPECT_EQ(cs.lanesActive, queue.workItems);
+  EXPECT_EQ(cs.waves, (queue.workItems + 63) / 64);
   EXPECT_GT(ps.lanesDeadStencil, 0u);
   EXPECT_GT(ps.lanesLaunched, cs.lanesLaunched);
   EXPECT_GT(ps.tilesHiStencilCulled, 0u);
   // The first pass of the stencil strategy is a full-screen pass with every lane active.
-  EXPECT_EQ(stencil.dispatches[0].lanes.lanesActive, static_cast<std::uint64_t>(w) * h);
+  EXPECT_EQ(reports[0].lanes.lanesActive, static_cast<std::uint64_t>(w) * h);
   // The queue's edge detection reads a 10x10 luma tile per 8x8 group through LDS.
-  EXPECT_EQ(queue.dispatches[0].lanes.ldsBytesWritten, (w / 8) * (h / 8) * 100u * 4u);
+  EXPECT_EQ(reports[2].lanes.ldsBytesWritten, (w / 8) * (h / 8) * 100u * 4u);
 }
 
 TEST(PassesDemo, RefusesAThresholdOutsideItsRange) {
-  const sim::Texture2D<glm::vec4> input("input", 8, 8, 4);
+  EXPECT_THROW(ResolvePass("demo:threshold=0"), SettingsError);
+  EXPECT_THROW(ResolvePass("demo:threshold=nan"), SettingsError);
+  EXPECT_THROW(ResolvePass("demo:threshold=1.5"), SettingsError);
+  EXPECT_EQ(ResolvePass("demo:threshold=1").settings.Get("threshold"), 1.0);
+}
+
+TEST(PassesDemo, AHigherThresholdFindsFewerEdges) {
+  const sim::Texture2D<glm::vec4> input = Rectangles(64, 48, 3);
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  EXPECT_THROW(RunDemoEdgeBlend(machine, input, Strategy::StencilCulled, {.threshold = 0.0f}), std::invalid_argument);
-  EXPECT_THROW(RunDemoEdgeBlend(machine, input, Strategy::DeferredQueue, {.threshold = NAN}), std::invalid_argument);
+  auto edges = [&](const char* spec) {
+    return ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &input}, Strategy::DeferredQueue).workItems;
+  };
+  EXPECT_GT(edges("demo:threshold=0.05"), edges("demo:threshold=0.5"));
 }
 
 }  // namespace

@@ -17,7 +17,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "passes/demo_edge_blend.h"
+#include "passes/registry.h"
 #include "raster_test_util.h"
 #include "sim/frame.h"
 #include "sim_test_util.h"
@@ -232,26 +232,32 @@ FrameRun RunFrame(int threads) {
   Machine machine(GpuConfigByName("ps4-class"));
   FramePipeline frame(machine, SmallSettings(w, h));
   frame.Render({rect.clip, previous, rect.normals, rect.indices, rect.objects, colours});
-  const passes::DemoEdgeBlendResult stencil =
-      passes::RunDemoEdgeBlend(machine, frame.Colour(), passes::Strategy::StencilCulled);
-  const passes::DemoEdgeBlendResult queue =
-      passes::RunDemoEdgeBlend(machine, frame.Colour(), passes::Strategy::DeferredQueue);
+  const passes::PassConfig demo = passes::ResolvePass("demo");
+  const passes::PassOutput stencil =
+      demo.Make()->Run(machine, passes::FrameInputsOf(frame), passes::Strategy::StencilCulled);
+  const passes::PassOutput queue = demo.Make()->Run(machine, passes::FrameInputsOf(frame), passes::Strategy::DeferredQueue);
+  auto layerBytes = [](const passes::PassOutput& output) {
+    const std::vector<float>& values = output.layers.at(0).values;
+    std::vector<std::byte> bytes(values.size() * sizeof(float));
+    std::memcpy(bytes.data(), values.data(), bytes.size());
+    return bytes;
+  };
   FrameRun run{{machine.Reports().begin(), machine.Reports().end()},
                {frame.Colour().Texels().begin(), frame.Colour().Texels().end()},
-               {stencil.output.Texels().begin(), stencil.output.Texels().end()},
-               {queue.output.Texels().begin(), queue.output.Texels().end()},
+               {stencil.colour.Texels().begin(), stencil.colour.Texels().end()},
+               {queue.colour.Texels().begin(), queue.colour.Texels().end()},
                {{"colour", Bytes(frame.Colour())},
                 {"depth", Bytes(frame.Depth())},
                 {"normal", Bytes(frame.Normal())},
                 {"object id", Bytes(frame.ObjectId())},
                 {"velocity", Bytes(frame.Velocity())},
                 {"eqaa surface", EqaaBytes(frame.Eqaa())},
-                {"stencil output", Bytes(stencil.output)},
-                {"stencil edges", Bytes(stencil.edges)},
-                {"queue output", Bytes(queue.output)},
-                {"queue edges", Bytes(queue.edges)}},
+                {"stencil output", Bytes(stencil.colour)},
+                {"stencil edges", layerBytes(stencil)},
+                {"queue output", Bytes(queue.colour)},
+                {"queue edges", layerBytes(queue)}},
                0,
-               stencil.edgePixels};
+               stencil.workItems};
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) run.pixelsWithTwoFragments += frame.Eqaa().FragmentCount(x, y) >= 2;
   }

@@ -1,0 +1,99 @@
+#pragma once
+// What every post pass is to the rest of aasim (DESIGN.md "Passes and studies"): a Pass object
+// built once per run and strategy from its registered description (PassInfo) and validated
+// settings, called once per frame. Kernels inside a pass are templates inlined into the
+// machine's wave loops; the only virtual call is Run, once per frame.
+//
+// A temporal pass keeps its history in its instance, which is why the study makes one instance
+// per strategy and never shares one between them.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include "passes/settings.h"
+#include "sim/dispatch.h"
+#include "sim/frame.h"
+
+namespace passes {
+
+// The study's central axis (DESIGN.md "Dispatch strategies"): the same detect/consume work run as
+// a stencil-culled full-screen pixel shader pair, or as a compute pass that appends the work set to
+// a queue consumed by an indirect dispatch.
+enum class Strategy : std::uint8_t { StencilCulled, DeferredQueue };
+inline constexpr Strategy kAllStrategies[] = {Strategy::StencilCulled, Strategy::DeferredQueue};
+std::string_view StrategyName(Strategy strategy);  // "stencil", "queue"
+std::optional<Strategy> StrategyByName(std::string_view name);
+
+// The frame a pass reads. Targets a frame does not have are null; a pass that needs one lists it
+// in PassInfo::inputs and the study supplies it.
+struct FrameInputs {
+  const sim::Texture2D<glm::vec4>* colour = nullptr;  // resolved, linear RGBA
+  const sim::Texture2D<float>* depth = nullptr;
+  const sim::Texture2D<glm::vec4>* normal = nullptr;
+  const sim::Texture2D<std::uint32_t>* objectId = nullptr;
+  const sim::Texture2D<glm::vec2>* velocity = nullptr;
+  const fmask::EqaaSurface* eqaa = nullptr;
+  int frameIndex = 0;
+  glm::vec2 jitter{0.0f};  // this frame's projection jitter in pixels
+
+  int Width() const { return colour->Width(); }
+  int Height() const { return colour->Height(); }
+};
+
+// Every target of a rendered frame.
+FrameInputs FrameInputsOf(const sim::FramePipeline& frame, int frameIndex = 0);
+
+enum class FrameInput : std::uint8_t { Colour, Depth, Normal, ObjectId, Velocity, Eqaa };
+
+// An intermediate a pass exposes for inspection (SMAA's edges and blend weights, CMAA2's
+// candidates): named channels, written as image layers and compared between strategies.
+struct PassLayer {
+  std::string name;                   // "edges"
+  std::vector<std::string> channels;  // {"Y"}, {"R", "G"}
+  int width = 0, height = 0;
+  std::vector<float> values;          // row-major, channels interleaved
+};
+
+// A one-channel layer ("Y") holding the texture's values.
+PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture);
+
+struct PassOutput {
+  sim::Texture2D<glm::vec4> colour{"pass output", 1, 1};
+  std::vector<PassLayer> layers;
+  // Pixels the strategies' work set held (edge pixels for the demo): under the queue strategy the
+  // consume dispatch's active lanes, under the stencil strategy its stencil-passing pixels.
+  std::uint64_t workItems = 0;
+};
+
+struct PassInfo {
+  std::string_view name;         // registry key: "demo"
+  std::string_view description;  // one line for --help and the report
+  std::string_view source;       // header with the pass diagram: "passes/demo/demo.h"
+  std::vector<SettingInfo> settings;
+  std::vector<Preset> presets;
+  std::vector<FrameInput> inputs;
+  // The dispatches the strategies exist for, compared side by side in the report.
+  std::vector<std::string_view> studiedDispatches;
+  std::vector<Strategy> strategies;
+  // Host bytes per pixel one run of the pass holds at once (outputs, intermediates, queues), for
+  // the memory guard.
+  std::uint64_t bytesPerPixel = 0;
+  bool temporal = false;  // keeps history across frames
+};
+
+class Pass {
+ public:
+  virtual ~Pass() = default;
+  virtual const PassInfo& Info() const = 0;
+  // Runs one frame; dispatches go to the machine's report list.
+  virtual PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) = 0;
+};
+
+}  // namespace passes

@@ -1,0 +1,37 @@
+// The pass registry (see registry.h).
+
+#include "passes/registry.h"
+
+#include "passes/demo/demo.h"
+
+namespace passes {
+
+std::span<const RegisteredPass> AllPasses() {
+  static const RegisteredPass kPasses[] = {
+      {demo::Info, demo::Make},
+  };
+  return kPasses;
+}
+
+std::vector<std::string> PassNames() {
+  std::vector<std::string> names;
+  for (const RegisteredPass& pass : AllPasses()) names.emplace_back(pass.info().name);
+  return names;
+}
+
+const RegisteredPass& PassByName(std::string_view name) {
+  for (const RegisteredPass& pass : AllPasses()) {
+    if (pass.info().name == name) return pass;
+  }
+  std::string names;
+  for (const std::string& each : PassNames()) names += (names.empty() ? "" : ", ") + each;
+  throw SettingsError("unknown post pass '" + std::string(name) + "' (passes: " + names + ")");
+}
+
+PassConfig ResolvePass(std::string_view text) {
+  const PassSpec spec = ParsePassSpec(text);
+  const RegisteredPass& pass = PassByName(spec.name);
+  return {&pass, ResolveSettings(spec, pass.info().settings, pass.info().presets)};
+}
+
+}  // namespace passes

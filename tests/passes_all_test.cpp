@@ -1,0 +1,111 @@
+// Every registered pass under every strategy it declares, on a rendered frame: the properties the
+// study relies on, checked for each pass without the pass writing a test for them (pbrt's
+// integrators_test pattern: one parameterised test over the registry).
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <oneapi/tbb/global_control.h>
+
+#include "cli/frame_input.h"
+#include "passes/compare.h"
+#include "passes/registry.h"
+#include "scenes/scene.h"
+#include "sim/frame.h"
+#include "sim_test_util.h"
+
+namespace passes {
+namespace {
+
+constexpr int kWidth = 150, kHeight = 94;  // not multiples of 8 or 64: partial groups, waves, quads
+
+struct PassRun {
+  PassOutput output;
+  std::vector<sim::DispatchReport> reports;
+};
+
+// Renders the default scene and runs the pass once under `strategy` with `threads` host threads.
+PassRun RunPass(const RegisteredPass& registered, Strategy strategy, int threads) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  const float aspect = static_cast<float>(kWidth) / kHeight;
+  const scenes::Scene scene = scenes::LoadScene("builtin:default", aspect);
+  const cli::FrameScene frameScene = cli::ToFrameScene(scene, aspect);
+  sim::Machine machine(sim::GpuConfigByName("ps4-class"));
+  sim::FrameSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  sim::FramePipeline pipeline(machine, settings);
+  pipeline.Render(frameScene.Geometry());
+  machine.ClearReports();
+  const PassInfo& info = registered.info();
+  const std::unique_ptr<Pass> pass = registered.make(PassSettings(info.name, info.settings));
+  PassRun run{pass->Run(machine, FrameInputsOf(pipeline), strategy), {}};
+  run.reports = machine.Reports();
+  return run;
+}
+
+const sim::DispatchReport& Studied(const PassRun& run, const PassInfo& info) {
+  for (const sim::DispatchReport& report : run.reports) {
+    if (report.name == info.studiedDispatches.front()) return report;
+  }
+  throw std::logic_error("no studied dispatch " + std::string(info.studiedDispatches.front()));
+}
+
+class EveryPass : public ::testing::TestWithParam<std::string> {
+ protected:
+  const RegisteredPass& Pass() const { return PassByName(GetParam()); }
+  const PassInfo& Info() const { return Pass().info(); }
+};
+
+TEST_P(EveryPass, DeclaresWhatTheStudyNeeds) {
+  EXPECT_FALSE(Info().description.empty());
+  EXPECT_FALSE(Info().strategies.empty());
+  EXPECT_FALSE(Info().studiedDispatches.empty());
+  EXPECT_GT(Info().bytesPerPixel, 0u);
+  for (const SettingInfo& setting : Info().settings) {
+    EXPECT_FALSE(setting.doc.empty()) << setting.name;
+    PassSettings settings(Info().name, Info().settings);
+    EXPECT_NO_THROW(settings.Set(setting.name, setting.defaultValue)) << setting.name << ": default out of range";
+  }
+}
+
+TEST_P(EveryPass, StrategiesGiveBitIdenticalOutputs) {
+  const std::vector<Strategy>& strategies = Info().strategies;
+  const PassRun first = RunPass(Pass(), strategies.front(), 2);
+  EXPECT_GT(first.output.workItems, 0u) << "the frame must give the pass work, or identity proves nothing";
+  for (std::size_t i = 1; i < strategies.size(); ++i) {
+    const StrategyDifference difference = CompareOutputs(first.output, RunPass(Pass(), strategies[i], 2).output);
+    EXPECT_TRUE(difference.Identical()) << StrategyName(strategies[i]) << ": " << difference.Describe();
+  }
+}
+
+TEST_P(EveryPass, OneAndTwoThreadsGiveIdenticalImagesAndCounters) {
+  for (const Strategy strategy : Info().strategies) {
+    const PassRun one = RunPass(Pass(), strategy, 1);
+    const PassRun two = RunPass(Pass(), strategy, 2);
+    EXPECT_TRUE(CompareOutputs(one.output, two.output).Identical()) << StrategyName(strategy);
+    sim::testing::ExpectSameReports(one.reports, two.reports);
+  }
+}
+
+TEST_P(EveryPass, TheStudiedDispatchRunsOneActiveLanePerWorkItem) {
+  for (const Strategy strategy : Info().strategies) {
+    const PassRun run = RunPass(Pass(), strategy, 2);
+    const sim::DispatchReport& studied = Studied(run, Info());
+    EXPECT_EQ(studied.lanes.lanesActive, run.output.workItems) << StrategyName(strategy);
+    if (strategy == Strategy::DeferredQueue) {
+      // A queue consumer packs its items densely: ceil(N / 64) waves, no lane wasted but the last wave's.
+      EXPECT_EQ(studied.lanes.waves, (run.output.workItems + sim::kWaveLanes - 1) / sim::kWaveLanes);
+      EXPECT_EQ(studied.kind, sim::DispatchKind::IndirectCompute);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, EveryPass, ::testing::ValuesIn(PassNames()),
+                         [](const ::testing::TestParamInfo<std::string>& param) { return param.param; });
+
+}  // namespace
+}  // namespace passes
