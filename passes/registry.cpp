@@ -2,6 +2,7 @@
 
 #include "passes/registry.h"
 
+#include "passes/copy/copy.h"
 #include "passes/demo/demo.h"
 
 namespace passes {
@@ -9,6 +10,7 @@ namespace passes {
 std::span<const RegisteredPass> AllPasses() {
   static const RegisteredPass kPasses[] = {
       {demo::Info, demo::Make},
+      {copy::Info, copy::Make},
   };
   return kPasses;
 }
