@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "passes/registry.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -117,13 +119,25 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
   EXPECT_EQ(report["configuration"]["width"], 160);
   ASSERT_EQ(report["frames"].size(), std::size(kModes));
   for (std::size_t i = 0; i < std::size(kModes); ++i) EXPECT_EQ(report["frames"][i]["mode"], kModes[i]);
-  ASSERT_EQ(report["passes"].size(), 1u);
+  // --post all: every registered pass, in registry order, each under its strategies.
+  const std::vector<std::string> passNames = passes::PassNames();
+  ASSERT_EQ(report["passes"].size(), passNames.size());
+  std::size_t passDispatches = 0;
+  for (std::size_t i = 0; i < passNames.size(); ++i) {
+    const nlohmann::json& pass = report["passes"][i];
+    EXPECT_EQ(pass["name"], passNames[i]);
+    EXPECT_EQ(pass["input_frame"], "1S/1Z/1F");
+    EXPECT_TRUE(pass["strategies_identical"].get<bool>());
+    for (const nlohmann::json& run : pass["strategies"]) passDispatches += run["dispatches"].size();
+  }
   EXPECT_EQ(report["passes"][0]["name"], "demo");
-  EXPECT_EQ(report["passes"][0]["input_frame"], "1S/1Z/1F");
-  EXPECT_TRUE(report["passes"][0]["strategies_identical"].get<bool>());
+  // The demo pass: 2 dispatches stencil-culled, 3 queued.
+  EXPECT_EQ(report["passes"][0]["strategies"][0]["dispatches"].size() +
+                report["passes"][0]["strategies"][1]["dispatches"].size(),
+            5u);
   const nlohmann::json& dispatches = report["dispatches"]["dispatches"];
-  // One material draw per mode; the demo pass: 2 dispatches stencil-culled, 3 queued.
-  ASSERT_EQ(dispatches.size(), std::size(kModes) + 5);
+  // One material draw per mode, then the passes' dispatches.
+  ASSERT_EQ(dispatches.size(), std::size(kModes) + passDispatches);
   const std::string counters = ReadText(Out() / "counters.csv");
   EXPECT_EQ(counters.rfind("frame,name,kind,strategy,", 0), 0u) << counters.substr(0, 80);
   EXPECT_EQ(CountLines(counters), dispatches.size() + 1);
@@ -133,8 +147,8 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
     EXPECT_EQ(draw["frame"], kModes[i]);
   }
   const std::string quality = ReadText(Out() / "quality.csv");
-  // Header, the modes, the fetch resolves of the two EQAA modes (F < S), the demo pass.
-  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + 2 + 1);
+  // Header, the modes, the fetch resolves of the two EQAA modes (F < S), the passes.
+  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + 2 + passNames.size());
   EXPECT_NE(quality.find("\n16S/8Z/4F,frame,"), std::string::npos) << quality;
   EXPECT_NE(quality.find("\n8S/4Z/2F fetch,fetch resolve,"), std::string::npos) << quality;
   for (std::size_t i = 0; i < std::size(kModes); ++i) {
