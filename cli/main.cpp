@@ -13,6 +13,7 @@
 #include "cli/frame_command.h"
 #include "cli/frame_options.h"
 #include "cli/output_dir.h"
+#include "cli/passes_command.h"
 #include "cli/raster_command.h"
 #include "cli/raster_options.h"
 #include "cli/run_command.h"
@@ -58,6 +59,8 @@ int RunAasim(int argc, char** argv) {
   CLI::App* frame = cli::AddFrameCommand(app, frameOptions);
   cli::RunCommandOptions runOptions;
   CLI::App* run = cli::AddRunCommand(app, runOptions);
+  cli::PassesCommandOptions passesOptions;
+  CLI::App* passes = cli::AddPassesCommand(app, passesOptions);
   cli::RequireDecimalIntegers(app);
   app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
              "default scene, report in out/report/report.html.");
@@ -66,8 +69,11 @@ int RunAasim(int argc, char** argv) {
     app.parse(argc, argv);
     if (raster->parsed()) cli::ResolveRasterOptions(rasterOptions);
     if (frame->parsed()) cli::ResolveFrameOptions(frameOptions);
+    if (passes->parsed()) cli::ResolvePassesOptions(passesOptions);
     // `aasim` alone is the main job with its defaults.
-    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed()) cli::ResolveRunOptions(*run, runOptions);
+    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed()) {
+      cli::ResolveRunOptions(*run, runOptions);
+    }
   } catch (const CLI::Success& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
@@ -75,6 +81,7 @@ int RunAasim(int argc, char** argv) {
                           : fixtures->parsed() ? "aasim fixtures"
                           : frame->parsed()    ? "aasim frame"
                           : run->parsed()      ? "aasim run"
+                          : passes->parsed()   ? "aasim passes"
                                                : "aasim";
     return ReportUsageError(command, error);
   }
@@ -86,6 +93,8 @@ int RunAasim(int argc, char** argv) {
       cli::RunFrameCommand(frameOptions, std::cout);
     } else if (fixtures->parsed()) {
       cli::RunFixturesCommand(fixturesOptions, std::cout);
+    } else if (passes->parsed()) {
+      cli::RunPassesCommand(passesOptions, std::cout);
     } else {
       cli::RunRunCommand(runOptions, std::cout, std::cerr);
     }

@@ -271,6 +271,41 @@ TEST_F(CliFrameTest, OneStrategyAndNoPostRunOnlyWhatWasAskedFor) {
   EXPECT_EQ(json["dispatches"].size(), 1u);
 }
 
+// `aasim frame --post NAME` reaches every registered pass through the registry, both strategies
+// agree, and a setting reaches the pass (the demo's threshold changes its work set).
+TEST_F(CliFrameTest, EveryRegisteredPassRunsFromThePostOption) {
+  for (const std::string& name : passes::PassNames()) {
+    std::vector<std::string> args = SmallRun(scratch_ / name);
+    args.insert(args.end(), {"--post", name});
+    const CommandResult run = RunAasim(args, scratch_);
+    ASSERT_EQ(run.exitCode, 0) << name << ": " << run.err;
+    EXPECT_NE(run.out.find("identical output: yes"), std::string::npos) << name << ": " << run.out;
+    const nlohmann::json json = nlohmann::json::parse(ReadText(scratch_ / name / "dispatches.json"));
+    EXPECT_EQ(json["configuration"]["post"], name);
+    EXPECT_EQ(FilesIn(scratch_ / name / "post"), (std::vector<std::string>{"queue", "stencil"})) << name;
+  }
+  auto edgeLanes = [&](const std::string& spec) {
+    std::vector<std::string> args = SmallRun(scratch_ / "threshold");
+    args.insert(args.end(), {"--post", spec, "--strategy", "queue"});
+    const CommandResult run = RunAasim(args, scratch_);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json json = nlohmann::json::parse(ReadText(scratch_ / "threshold/dispatches.json"));
+    EXPECT_EQ(json["configuration"]["pass_settings"], spec == "demo" ? "threshold=0.1" : "threshold=0.5");
+    return json["dispatches"].back()["counters"]["lanes/active"].get<std::uint64_t>();
+  };
+  EXPECT_GT(edgeLanes("demo"), edgeLanes("demo:threshold=0.5"));
+}
+
+TEST_F(CliFrameTest, PassesListsTheRegistryWithSettings) {
+  const CommandResult run = RunAasim({"passes"}, scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  for (const std::string& name : passes::PassNames()) EXPECT_NE(run.out.find(name + ": "), std::string::npos) << name;
+  EXPECT_NE(run.out.find("threshold=0.1  (0, 1]"), std::string::npos) << run.out;
+  const CommandResult unknown = RunAasim({"passes", "nosuch"}, scratch_);
+  EXPECT_EQ(unknown.exitCode, 2);
+  EXPECT_EQ(unknown.err.rfind("aasim passes: unknown post pass 'nosuch'", 0), 0u) << unknown.err;
+}
+
 TEST_F(CliFrameTest, HelpExplainsEveryOption) {
   const CommandResult run = RunAasim({"frame", "--help"}, scratch_);
   EXPECT_EQ(run.exitCode, 0);
@@ -301,6 +336,11 @@ std::vector<BadInput> BadInputs() {
       {"StrategyWithoutPost", fixed({"--post", "none", "--strategy", "queue"}), "--strategy queue",
        "needs a post pass", 2},
       {"UnknownFlush", fixed({"--flush", "sometimes"}), "--flush", "not in", 2},
+      {"UnknownPass", fixed({"--post", "nosuch"}), "--post nosuch", "unknown post pass 'nosuch' (passes: demo", 2},
+      {"PassSettingOutOfRange", fixed({"--post", "demo:threshold=2"}), "--post demo:threshold=2",
+       "pass demo: threshold=2 outside (0, 1]", 2},
+      {"UnknownPassSetting", fixed({"--post", "demo:speed=1"}), "--post demo:speed=1",
+       "unknown setting 'speed' (settings: threshold)", 2},
       {"WidthZero", fixed({"--width", "0"}), "--width", "not in range 1 to 16384", 2},
       {"OverMemoryLimit",
        fixed({"--width", "16384", "--height", "16384", "--samples", "16", "--depth-samples", "8"}),
