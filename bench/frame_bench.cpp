@@ -20,7 +20,7 @@
 #include <oneapi/tbb/info.h>
 
 #include "bench/bench_util.h"
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 #include "passes/compare.h"
 #include "passes/registry.h"
 #include "scenes/scene.h"
@@ -158,7 +158,7 @@ int RunBench(const BenchOptions& options) {
     if (!jsonFile) throw std::runtime_error(options.json + ": cannot write JSON");
   }
   const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
-  const cli::FrameScene scene = cli::ToFrameScene(scenes::LoadScene(options.scene, aspect), aspect);
+  const study::FrameScene scene = study::ToFrameScene(scenes::LoadScene(options.scene, aspect), aspect);
   const sim::FrameGeometry geometry = scene.Geometry();
   const sim::GpuConfig gpu = sim::GpuConfigByName(options.gpu);
 

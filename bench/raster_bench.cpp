@@ -21,7 +21,7 @@
 
 #include "cli/counters_json.h"
 #include "bench/bench_util.h"
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 #include "raster/limits.h"
 #include "raster/rasterizer.h"
 #include "raster/sample_pattern.h"
@@ -58,7 +58,7 @@ struct ConfigResult {
 };
 
 // A frame loop keeps one Rasterizer, so its buffers are paged in once, not every frame.
-const raster::RasterResult& RenderFrame(const cli::ClipSpaceScene& clip,
+const raster::RasterResult& RenderFrame(const study::ClipSpaceScene& clip,
                                         raster::DepthStencilSurface& surface,
                                         raster::Rasterizer& rasterizer) {
   const raster::DepthSurfaceConfig& config = surface.Config();
@@ -66,7 +66,7 @@ const raster::RasterResult& RenderFrame(const cli::ClipSpaceScene& clip,
   return rasterizer.Run(clip.DrawInput(), raster::DrawState{}, surface);
 }
 
-Frame CaptureFrame(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface& surface,
+Frame CaptureFrame(const study::ClipSpaceScene& clip, raster::DepthStencilSurface& surface,
                    int threads) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));
@@ -84,7 +84,7 @@ Frame CaptureFrame(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface&
   return frame;
 }
 
-double TimeFrame(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface& surface,
+double TimeFrame(const study::ClipSpaceScene& clip, raster::DepthStencilSurface& surface,
                  raster::Rasterizer& rasterizer) {
   const auto start = std::chrono::steady_clock::now();
   RenderFrame(clip, surface, rasterizer);
@@ -93,7 +93,7 @@ double TimeFrame(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface& s
 }
 
 // The warm-up frame pages in the surface and the thread pool; it is reported, not counted.
-void TimeFrames(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface& surface,
+void TimeFrames(const study::ClipSpaceScene& clip, raster::DepthStencilSurface& surface,
                 const BenchOptions& options, ConfigResult& result) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(options.threads));
@@ -104,7 +104,7 @@ void TimeFrames(const cli::ClipSpaceScene& clip, raster::DepthStencilSurface& su
   }
 }
 
-ConfigResult RunConfig(const cli::ClipSpaceScene& clip, const BenchOptions& options, int samples) {
+ConfigResult RunConfig(const study::ClipSpaceScene& clip, const BenchOptions& options, int samples) {
   ConfigResult result;
   result.samples = samples;
   result.depthSamples = std::min(samples, raster::kMaxDepthSamples);
@@ -179,8 +179,8 @@ int RunBench(const BenchOptions& options) {
     if (!jsonFile) throw std::runtime_error(options.json + ": cannot write JSON");
   }
   const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
-  const cli::ClipSpaceScene clip =
-      cli::ToClipSpace(scenes::LoadScene(options.scene, aspect), aspect);
+  const study::ClipSpaceScene clip =
+      study::ToClipSpace(scenes::LoadScene(options.scene, aspect), aspect);
   std::vector<ConfigResult> results;
   for (const int samples : kSampleCounts) results.push_back(RunConfig(clip, options, samples));
   const bool deterministic = std::all_of(results.begin(), results.end(),

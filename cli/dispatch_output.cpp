@@ -87,21 +87,8 @@ constexpr TimeField kTimeFields[] = {
 };
 constexpr const char* kBound = "bound";
 
-void CheckLabels(std::span<const sim::DispatchReport> reports, std::span<const std::string> labels,
-                 const char* what) {
-  if (!labels.empty() && labels.size() != reports.size()) {
-    throw std::invalid_argument(std::to_string(labels.size()) + " " + what + " for " +
-                                std::to_string(reports.size()) + " dispatches");
-  }
-}
-
-void CheckStrategies(std::span<const sim::DispatchReport> reports,
-                     std::span<const std::string> strategies) {
-  CheckLabels(reports, strategies, "strategies");
-}
-
-std::string_view LabelOf(std::span<const std::string> labels, std::size_t index) {
-  return labels.empty() ? std::string_view() : std::string_view(labels[index]);
+bool AnyFrame(std::span<const study::DispatchRecord> records) {
+  return std::any_of(records.begin(), records.end(), [](const study::DispatchRecord& r) { return !r.frame.empty(); });
 }
 
 nlohmann::ordered_json Vector3(const glm::ivec3& v) { return {v.x, v.y, v.z}; }
@@ -195,15 +182,17 @@ nlohmann::ordered_json TimeJson(const sim::TimeEstimate& time) {
   return json;
 }
 
-nlohmann::ordered_json DispatchJson(const sim::DispatchReport& report, std::string_view strategy,
-                                    std::string_view frame) {
+nlohmann::ordered_json DispatchJson(const study::DispatchRecord& record) {
+  const sim::DispatchReport& report = record.report;
+  const std::string& strategy = record.strategy;
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
-  if (!frame.empty()) json["frame"] = frame;
+  if (!record.frame.empty()) json["frame"] = record.frame;
   json.update(nlohmann::ordered_json{
       {"name", report.name},
       {"kind", sim::DispatchKindName(report.kind)},
       {"strategy",
        strategy.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(strategy)},
+      {"pass", record.pass.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(record.pass)},
       {"kernel", KernelJson(report.kernel)},
       {"group_size", Vector3(report.groupSize)},
       {"group_count", Vector3(report.groupCount)},
@@ -352,20 +341,20 @@ void PrintAlignedTable(std::ostream& out, const std::vector<std::vector<std::str
   }
 }
 
-const sim::DispatchReport& FindDispatch(std::span<const sim::DispatchReport> pass,
-                                        std::string_view name, std::string_view label) {
+const sim::DispatchReport& FindDispatch(std::span<const study::DispatchRecord> pass, std::string_view name,
+                                        std::string_view label) {
   const auto found = std::find_if(pass.begin(), pass.end(),
-                                  [&](const sim::DispatchReport& r) { return r.name == name; });
+                                  [&](const study::DispatchRecord& r) { return r.report.name == name; });
   if (found == pass.end()) {
     throw std::invalid_argument(std::string(label) + " pass has no dispatch '" + std::string(name) +
                                 "'");
   }
-  return *found;
+  return found->report;
 }
 
-double EstimatedMicroseconds(std::span<const sim::DispatchReport> pass) {
+double EstimatedMicroseconds(std::span<const study::DispatchRecord> pass) {
   double total = 0.0;
-  for (const sim::DispatchReport& report : pass) total += report.time.totalMicroseconds;
+  for (const study::DispatchRecord& record : pass) total += record.report.time.totalMicroseconds;
   return total;
 }
 
@@ -391,13 +380,9 @@ Rgb8 HeatColour(float utilization) {
 
 }  // namespace
 
-nlohmann::ordered_json DispatchReportsJson(std::span<const sim::DispatchReport> reports,
+nlohmann::ordered_json DispatchReportsJson(std::span<const study::DispatchRecord> records,
                                            const sim::GpuConfig& gpu,
-                                           const nlohmann::ordered_json& configuration,
-                                           std::span<const std::string> strategies,
-                                           std::span<const std::string> frames) {
-  CheckStrategies(reports, strategies);
-  CheckLabels(reports, frames, "frames");
+                                           const nlohmann::ordered_json& configuration) {
   nlohmann::ordered_json json = {
       {"schema", kDispatchesSchema},
       {"version", kDispatchesVersion},
@@ -406,9 +391,7 @@ nlohmann::ordered_json DispatchReportsJson(std::span<const sim::DispatchReport> 
       {"configuration", configuration},
       {"dispatches", nlohmann::ordered_json::array()},
   };
-  for (std::size_t i = 0; i < reports.size(); ++i) {
-    json["dispatches"].push_back(DispatchJson(reports[i], LabelOf(strategies, i), LabelOf(frames, i)));
-  }
+  for (const study::DispatchRecord& record : records) json["dispatches"].push_back(DispatchJson(record));
   return json;
 }
 
@@ -422,45 +405,38 @@ std::string CsvField(std::string_view text) {
   return quoted + '"';
 }
 
-std::string DispatchReportsCsv(std::span<const sim::DispatchReport> reports,
-                               std::span<const std::string> strategies,
-                               std::span<const std::string> frames) {
-  CheckStrategies(reports, strategies);
-  CheckLabels(reports, frames, "frames");
+std::string DispatchReportsCsv(std::span<const study::DispatchRecord> records) {
+  const bool withFrame = AnyFrame(records);
   std::string csv;
-  AppendCsvLine(csv, CsvHeader(!frames.empty()));
-  for (std::size_t i = 0; i < reports.size(); ++i) {
+  AppendCsvLine(csv, CsvHeader(withFrame));
+  for (const study::DispatchRecord& record : records) {
     const std::optional<std::string_view> frame =
-        frames.empty() ? std::nullopt : std::optional<std::string_view>(frames[i]);
-    AppendCsvLine(csv, CsvRow(reports[i], LabelOf(strategies, i), frame));
+        withFrame ? std::optional<std::string_view>(record.frame) : std::nullopt;
+    AppendCsvLine(csv, CsvRow(record.report, record.strategy, frame));
   }
   return csv;
 }
 
-std::vector<std::vector<std::string>> DispatchSummaryRows(std::span<const sim::DispatchReport> reports,
-                                                          std::span<const std::string> strategies) {
-  CheckStrategies(reports, strategies);
+std::vector<std::vector<std::string>> DispatchSummaryRows(std::span<const study::DispatchRecord> records) {
   std::vector<std::vector<std::string>> rows(1);
   for (const Column& column : kSummaryColumns) rows[0].emplace_back(column.heading);
-  for (std::size_t i = 0; i < reports.size(); ++i) {
-    rows.push_back(SummaryRow(reports[i], LabelOf(strategies, i)));
-  }
+  for (const study::DispatchRecord& record : records) rows.push_back(SummaryRow(record.report, record.strategy));
   return rows;
 }
 
-void PrintDispatchSummary(std::ostream& out, std::span<const sim::DispatchReport> reports,
-                          const sim::GpuConfig& gpu, std::span<const std::string> strategies) {
+void PrintDispatchSummary(std::ostream& out, std::span<const study::DispatchRecord> records,
+                          const sim::GpuConfig& gpu) {
   std::vector<bool> rightAligned;
   for (const Column& column : kSummaryColumns) rightAligned.push_back(column.numeric);
   out << "dispatches (est. µs: estimated from the GPU configuration '" << gpu.name
       << "', docs/timing-model.md; occupancy: theoretical waves per SIMD; lane shares: % of "
          "lanes launched)\n";
-  PrintAlignedTable(out, DispatchSummaryRows(reports, strategies), rightAligned);
+  PrintAlignedTable(out, DispatchSummaryRows(records), rightAligned);
 }
 
 std::vector<std::vector<std::string>> DispatchComparisonRows(
-    std::string_view name, std::string_view leftLabel, std::span<const sim::DispatchReport> leftPass,
-    std::string_view rightLabel, std::span<const sim::DispatchReport> rightPass) {
+    std::string_view name, std::string_view leftLabel, std::span<const study::DispatchRecord> leftPass,
+    std::string_view rightLabel, std::span<const study::DispatchRecord> rightPass) {
   const sim::DispatchReport& a = FindDispatch(leftPass, name, leftLabel);
   const sim::DispatchReport& b = FindDispatch(rightPass, name, rightLabel);
   return {
@@ -480,9 +456,9 @@ std::vector<std::vector<std::string>> DispatchComparisonRows(
 }
 
 void PrintDispatchComparison(std::ostream& out, std::string_view name, std::string_view leftLabel,
-                             std::span<const sim::DispatchReport> leftPass,
+                             std::span<const study::DispatchRecord> leftPass,
                              std::string_view rightLabel,
-                             std::span<const sim::DispatchReport> rightPass) {
+                             std::span<const study::DispatchRecord> rightPass) {
   PrintAlignedTable(out, DispatchComparisonRows(name, leftLabel, leftPass, rightLabel, rightPass),
                     {false, true, true}, "  ");
 }

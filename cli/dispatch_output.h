@@ -16,55 +16,50 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/dispatch.h"
+#include "study/dispatch_log.h"
 
 namespace cli {
 
 inline constexpr const char* kDispatchesSchema = "aasim.dispatches";
 inline constexpr int kDispatchesVersion = 1;
 
-// `strategies` is empty or parallel to `reports`: the dispatch strategy each dispatch ran under
-// ("stencil", "queue"; empty for dispatches outside a post pass). The pass dispatches of two
-// strategies share names, so every output carries it. `frames`, likewise, names the frame (EQAA
-// mode) each dispatch belongs to when one run renders several; with it JSON gains a "frame" key
-// and CSV a leading "frame" column. Mismatched sizes throw std::invalid_argument.
+// Dispatch records (study/dispatch_log.h) carry the frame, pass and strategy each dispatch ran
+// under: the pass dispatches of two strategies share names, so every output carries the
+// strategy; when records name their frame (a run that renders several), JSON gains a "frame" key
+// and CSV a leading "frame" column.
 
 // {"schema", "version", "gpu", "timing_model", "configuration", "dispatches": [...]};
 // `configuration` is echoed as given (the run's resolved options).
-nlohmann::ordered_json DispatchReportsJson(std::span<const sim::DispatchReport> reports,
+nlohmann::ordered_json DispatchReportsJson(std::span<const study::DispatchRecord> records,
                                            const sim::GpuConfig& gpu,
-                                           const nlohmann::ordered_json& configuration,
-                                           std::span<const std::string> strategies = {},
-                                           std::span<const std::string> frames = {});
+                                           const nlohmann::ordered_json& configuration);
 
 // Header row, then one row per dispatch; "\n" line ends.
-std::string DispatchReportsCsv(std::span<const sim::DispatchReport> reports,
-                               std::span<const std::string> strategies = {},
-                               std::span<const std::string> frames = {});
+std::string DispatchReportsCsv(std::span<const study::DispatchRecord> records);
 // One CSV field: quoted, with inner quotes doubled, when it holds a comma, quote or line break.
 std::string CsvField(std::string_view text);
 
 // The table on stdout: lanes by kind, DRAM traffic, occupancy and the estimated time per
 // dispatch, under a line naming the GPU configuration the estimates come from.
-void PrintDispatchSummary(std::ostream& out, std::span<const sim::DispatchReport> reports,
-                          const sim::GpuConfig& gpu, std::span<const std::string> strategies = {});
+void PrintDispatchSummary(std::ostream& out, std::span<const study::DispatchRecord> records,
+                          const sim::GpuConfig& gpu);
 
 // The summary table's cells: a header row, then one row per dispatch ("name [strategy]").
-std::vector<std::vector<std::string>> DispatchSummaryRows(std::span<const sim::DispatchReport> reports,
-                                                          std::span<const std::string> strategies = {});
+std::vector<std::vector<std::string>> DispatchSummaryRows(std::span<const study::DispatchRecord> records);
 
 // The comparison's cells (PrintDispatchComparison): a header row with the two labels, then one
 // row per quantity. std::invalid_argument when a pass lacks `name`.
 std::vector<std::vector<std::string>> DispatchComparisonRows(
-    std::string_view name, std::string_view leftLabel, std::span<const sim::DispatchReport> leftPass,
-    std::string_view rightLabel, std::span<const sim::DispatchReport> rightPass);
+    std::string_view name, std::string_view leftLabel, std::span<const study::DispatchRecord> leftPass,
+    std::string_view rightLabel, std::span<const study::DispatchRecord> rightPass);
 
 // One dispatch, `name`, run under two strategies, side by side: waves, active and launched
 // lanes, utilisation %, DRAM bytes, estimated µs, and the estimated µs of each whole pass
 // (every dispatch in `leftPass` / `rightPass`). std::invalid_argument when a pass lacks `name`.
 void PrintDispatchComparison(std::ostream& out, std::string_view name, std::string_view leftLabel,
-                             std::span<const sim::DispatchReport> leftPass,
+                             std::span<const study::DispatchRecord> leftPass,
                              std::string_view rightLabel,
-                             std::span<const sim::DispatchReport> rightPass);
+                             std::span<const study::DispatchRecord> rightPass);
 
 // The utilization preview: 4x4 pixels per 8x8 tile, dark blue (0) to yellow (1), dark grey where
 // no lane was launched. Throws std::invalid_argument for an empty map.

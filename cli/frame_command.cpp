@@ -19,7 +19,7 @@
 
 #include "cli/dispatch_output.h"
 #include "cli/frame_output.h"
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
 #include "cli/text_io.h"
@@ -42,7 +42,7 @@ struct PassRun {
 sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::SamplePattern pattern,
                                 const scenes::Lighting& lighting) {
   sim::FrameSettings settings;
-  ApplyLighting(lighting, settings);
+  study::ApplyLighting(lighting, settings);
   settings.width = options.width;
   settings.height = options.height;
   settings.eqaa = options.Eqaa();
@@ -86,24 +86,21 @@ void WriteImages(OutputDir& dir, const sim::FramePipeline& pipeline,
   }
 }
 
-void WriteReports(OutputDir& dir, const FrameCommandOptions& options, const sim::Machine& machine,
-                  const std::vector<std::string>& strategies, int threads) {
-  const std::vector<sim::DispatchReport>& reports = machine.Reports();
-  for (std::size_t i = 0; i < reports.size(); ++i) {
-    if (reports[i].heat.Empty()) continue;
-    const std::string stem = "heat/" + HeatMapStem(i, reports[i].name, strategies[i]);
-    WriteHeatMap(reports[i].heat, dir.Stage(stem + ".exr"), dir.Stage(stem + ".png"));
+void WriteReports(OutputDir& dir, const FrameCommandOptions& options, const sim::GpuConfig& gpu,
+                  std::span<const study::DispatchRecord> records, int threads) {
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const sim::DispatchReport& report = records[i].report;
+    if (report.heat.Empty()) continue;
+    const std::string stem = "heat/" + HeatMapStem(i, report.name, records[i].strategy);
+    WriteHeatMap(report.heat, dir.Stage(stem + ".exr"), dir.Stage(stem + ".png"));
   }
-  WriteJson(
-      dir.Stage("dispatches.json"),
-      DispatchReportsJson(reports, machine.Gpu(), ConfigurationJson(options, threads), strategies));
-  WriteText(dir.Stage("dispatches.csv"), DispatchReportsCsv(reports, strategies));
+  WriteJson(dir.Stage("dispatches.json"), DispatchReportsJson(records, gpu, ConfigurationJson(options, threads)));
+  WriteText(dir.Stage("dispatches.csv"), DispatchReportsCsv(records));
 }
 
 // The study's question side by side: what the studied dispatch costs under each strategy.
-void PrintComparison(std::ostream& out, const sim::Machine& machine, std::string_view studied,
+void PrintComparison(std::ostream& out, std::span<const study::DispatchRecord> reports, std::string_view studied,
                      const PassRun& first, const PassRun& second, const passes::StrategyDifference& difference) {
-  const std::span<const sim::DispatchReport> reports(machine.Reports());
   auto dispatches = [&](const PassRun& run) { return reports.subspan(run.firstDispatch, run.endDispatch - run.firstDispatch); };
   out << "\n" << passes::StrategyName(first.strategy) << " vs " << passes::StrategyName(second.strategy) << ": "
       << studied << " (" << first.output.workItems << " work-set pixels)\n";
@@ -126,21 +123,22 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
   sim::Machine machine(sim::GpuConfigByName(options.gpu));
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   const scenes::Scene loaded = scenes::LoadScene(options.scene, aspect);
-  const FrameScene scene = ToFrameScene(loaded, aspect);
+  const study::FrameScene scene = study::ToFrameScene(loaded, aspect);
   sim::FramePipeline pipeline(machine, MakeSettings(options, std::move(pattern), loaded.lighting));
   OutputDir dir = OpenOutOption(options.out);
 
   pipeline.Render(scene.Geometry());
-  // Parallel to machine.Reports(): the frame's dispatches ran under no strategy.
-  std::vector<std::string> strategies(machine.Reports().size());
+  std::vector<study::DispatchRecord> records;
+  study::TakeDispatches(machine, records, "");
   std::vector<PassRun> passRuns;
   for (const passes::Strategy strategy : options.Strategies()) {
     // One instance per strategy, as the study makes them.
     const std::unique_ptr<passes::Pass> pass = options.pass->Make();
-    PassRun run{.strategy = strategy, .output = {}, .firstDispatch = machine.Reports().size()};
+    const std::string strategyName(passes::StrategyName(strategy));
+    PassRun run{.strategy = strategy, .output = {}, .firstDispatch = records.size()};
     run.output = pass->Run(machine, passes::FrameInputsOf(pipeline), strategy);
-    run.endDispatch = machine.Reports().size();
-    strategies.resize(machine.Reports().size(), std::string(passes::StrategyName(strategy)));
+    study::TakeDispatches(machine, records, "", std::string(options.pass->Info().name), strategyName);
+    run.endDispatch = records.size();
     passRuns.push_back(std::move(run));
   }
   passes::StrategyDifference difference;
@@ -149,19 +147,19 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
   }
 
   WriteImages(dir, pipeline, passRuns);
-  WriteReports(dir, options, machine, strategies, threads);
+  WriteReports(dir, options, machine.Gpu(), records, threads);
   dir.Commit("dispatches.json");
 
   summary << "frame      " << options.scene << ", " << options.width << "x" << options.height
           << ", " << fmask::EqaaName(options.Eqaa()) << ", pattern " << options.pattern
           << ", policy " << options.policy << ", GPU " << machine.Gpu().name << "\n\n";
-  PrintDispatchSummary(summary, machine.Reports(), machine.Gpu(), strategies);
+  PrintDispatchSummary(summary, records, machine.Gpu());
   if (passRuns.size() == 2) {
-    PrintComparison(summary, machine, options.pass->Info().studiedDispatches.front(), passRuns[0], passRuns[1],
+    PrintComparison(summary, records, options.pass->Info().studiedDispatches.front(), passRuns[0], passRuns[1],
                     difference);
   }
   double hostMs = 0.0;
-  for (const sim::DispatchReport& report : machine.Reports()) hostMs += report.hostMilliseconds;
+  for (const study::DispatchRecord& record : records) hostMs += record.report.hostMilliseconds;
   summary << "\nhost time  " << std::llround(hostMs) << " ms simulating the dispatches (" << threads
           << " threads; wall time of this program, not a GPU time)\n"
           << "report: " << (dir.Path() / "dispatches.json").string() << '\n';

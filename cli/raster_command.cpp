@@ -18,7 +18,7 @@
 #include "cli/counters_json.h"
 #include "cli/eqaa_output.h"
 #include "cli/eqaa_trace.h"
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
 #include "cli/ownership.h"
@@ -277,7 +277,7 @@ void RunRasterCommand(const RasterCommandOptions& options, std::ostream& summary
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   const scenes::Scene scene = scenes::LoadScene(options.scene, aspect);
-  const ClipSpaceScene clip = ToClipSpace(scene, aspect);
+  const study::ClipSpaceScene clip = study::ToClipSpace(scene, aspect);
   raster::DepthStencilSurface surface({.width = options.width,
                                        .height = options.height,
                                        .coverageSamples = options.samples,

@@ -11,11 +11,33 @@
 
 #include "cli/dispatch_output.h"
 #include "cli/output_dir.h"
-#include "cli/study.h"
+#include "study/study.h"
 #include "cli/study_report.h"
 
 namespace cli {
 namespace {
+
+using study::Study;
+using study::StudyFrame;
+using study::StudyPass;
+using study::StudyPassRun;
+using study::ScoredImage;
+
+// One line per finished step on the log, with its host time; a progress bar on stderr for the
+// ground truth, as --progress says.
+study::StudyObserver Observer(const RunCommandOptions& options, std::ostream& log,
+                              std::function<void(const StudyFrame&, const sim::FramePipeline&)> frameDone) {
+  study::StudyObserver observer;
+  observer.frameDone = std::move(frameDone);
+  if (options.progressMode == ProgressMode::Never) return observer;
+  observer.stepDone = [&log](const std::string& step, double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", seconds);
+    log << "aasim run: " << step << " (" << text << " s)\n" << std::flush;
+  };
+  observer.groundTruthProgress = scenes::StderrProgressBar("ground truth", options.progressMode == ProgressMode::Always);
+  return observer;
+}
 
 std::string Fixed(double value, int decimals) {
   if (!std::isfinite(value)) return std::isnan(value) ? "n/a" : "inf";
@@ -37,7 +59,7 @@ void PrintPass(std::ostream& out, const Study& study, const StudyPass& pass) {
       << " work-set pixels; estimated µs: docs/timing-model.md)\n";
   if (pass.runs.size() == 2) {
     const StudyPassRun &a = pass.runs[0], &b = pass.runs[1];
-    const std::span<const sim::DispatchReport> all(study.dispatches);
+    const std::span<const study::DispatchRecord> all(study.dispatches);
     PrintDispatchComparison(out, pass.studiedDispatch, passes::StrategyName(a.strategy),
                             all.subspan(a.firstDispatch, a.endDispatch - a.firstDispatch),
                             passes::StrategyName(b.strategy),
@@ -77,13 +99,14 @@ void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std:
   }
   // Every input is read and checked before the output directory exists, so a bad input leaves
   // no directory behind.
-  const StudyInputs inputs = LoadStudyInputs(resolved);
+  const study::ExperimentConfig config = ExperimentFrom(resolved);
+  const study::StudyInputs inputs = study::LoadStudyInputs(config);
   OutputDir dir = OpenOutOption(resolved.out);
-  const Study study = RunStudy(
-      inputs, resolved, [&](const StudyFrame& frame, const sim::FramePipeline& pipeline) {
+  const Study study = study::RunStudy(
+      inputs, config,
+      Observer(resolved, log, [&](const StudyFrame& frame, const sim::FramePipeline& pipeline) {
         StageFrameFiles(dir, frame, pipeline);
-      },
-      log);
+      }));
   StageStudyFiles(dir, study, resolved);
   dir.Commit("report.json");
   PrintSummary(summary, study, resolved, dir.Path());

@@ -204,6 +204,22 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
   CheckMemory(options);
 }
 
+study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
+  study::ExperimentConfig config;
+  config.scene = options.scene;
+  config.width = options.width;
+  config.height = options.height;
+  config.modes = options.eqaaModes;
+  config.pattern = options.pattern;
+  config.policy = options.policy;
+  config.gpu = options.gpu;
+  config.flush = WaveFlushByName(options.flush);
+  config.passes = options.postPasses;
+  config.groundTruth.samplesPerPixel = options.groundTruthSamples;
+  if (!options.noCache) config.groundTruth.cache = options.cache;
+  return config;
+}
+
 std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
                                std::span<const passes::PassConfig> postPasses) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);

@@ -13,6 +13,7 @@
 
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
+#include "study/experiment.h"
 
 namespace cli {
 
@@ -63,6 +64,9 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options);
 // "8S/4Z/2F,16S/8Z/4F" (or "8/4/2"): each a legal EQAA mode, no repeats, at least one.
 // Throws CLI::ValidationError naming the bad entry and listing the legal modes.
 std::vector<fmask::EqaaConfig> ParseEqaaModes(std::string_view list);
+
+// The experiment the resolved options describe (plain data for the study library).
+study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options);
 
 // Bytes held at once: the ground truth and its metrics, one frame pipeline at the largest mode,
 // every mode's kept images, and the post passes' outputs.

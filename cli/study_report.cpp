@@ -20,6 +20,12 @@
 namespace cli {
 namespace {
 
+using study::ModeSlug;
+using study::ScoredImage;
+using study::StudyGroundTruth;
+using study::StudyPass;
+using study::StudyPassRun;
+
 // Previews at most this wide keep report.html a few MB at 1080p; full images are in images/.
 constexpr int kPreviewMaxWidth = 960;
 // Crops of the hardest regions: three windows of about 1/16 of the image height, shown at
@@ -95,16 +101,16 @@ void StagePassFiles(OutputDir& dir, const StudyPass& pass) {
 
 std::string HeatFolder(const Study& study, std::size_t dispatch) {
   for (const StudyFrame& frame : study.frames) {
-    if (frame.image.label == study.dispatchFrames[dispatch]) return kImages + "heat/" + ModeSlug(frame.mode) + "/";
+    if (frame.image.label == study.dispatches[dispatch].frame) return kImages + "heat/" + ModeSlug(frame.mode) + "/";
   }
   return kImages + "heat/";
 }
 
 void StageHeatMaps(OutputDir& dir, const Study& study) {
   for (std::size_t i = 0; i < study.dispatches.size(); ++i) {
-    const sim::DispatchReport& report = study.dispatches[i];
+    const sim::DispatchReport& report = study.dispatches[i].report;
     if (report.heat.Empty()) continue;
-    const std::string stem = HeatFolder(study, i) + HeatMapStem(i, report.name, study.dispatchStrategies[i]);
+    const std::string stem = HeatFolder(study, i) + HeatMapStem(i, report.name, study.dispatches[i].strategy);
     WriteHeatMap(report.heat, dir.Stage(stem + ".exr"), dir.Stage(stem + ".png"));
   }
 }
@@ -130,7 +136,7 @@ nlohmann::ordered_json IndexRange(std::size_t first, std::size_t end) {
 
 double PassMicroseconds(const Study& study, const StudyPassRun& run) {
   double total = 0.0;
-  for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) total += study.dispatches[i].time.totalMicroseconds;
+  for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) total += study.dispatches[i].report.time.totalMicroseconds;
   return total;
 }
 
@@ -331,7 +337,7 @@ ReportSection FramesSection(const Study& study) {
                                       "DRAM MB", "est. µs"}, {}};
   ReportTable fragments{"Colour block counters", {"counter"}, {}};
   for (const StudyFrame& frame : study.frames) {
-    const sim::DispatchReport& draw = study.dispatches[frame.drawDispatch];
+    const sim::DispatchReport& draw = study.dispatches[frame.drawDispatch].report;
     const sim::LaneCounters& l = draw.lanes;
     lanes.rows.push_back({frame.image.label, std::to_string(l.waves), std::to_string(l.lanesLaunched),
                           Percent(l.lanesActive, l.lanesLaunched), Percent(l.lanesHelper, l.lanesLaunched),
@@ -354,7 +360,7 @@ ReportSection FramesSection(const Study& study) {
 }
 
 std::string DispatchLabel(const Study& study, std::size_t i) {
-  return study.dispatches[i].name + " [" + study.dispatchStrategies[i] + "]";
+  return study.dispatches[i].report.name + " [" + study.dispatches[i].strategy + "]";
 }
 
 void AddLanes(BarChart& chart, const std::string& label, const sim::LaneCounters& lanes) {
@@ -377,7 +383,7 @@ void AddStrategyCharts(ReportSection& section, const Study& study, const StudyPa
   BarChart time{"Estimated time (an estimate: docs/timing-model.md)", "µs", {}, {"dispatch"}, {{}}, false};
   for (const StudyPassRun& run : pass.runs) {
     for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) {
-      const sim::DispatchReport& report = study.dispatches[i];
+      const sim::DispatchReport& report = study.dispatches[i].report;
       const std::string label = DispatchLabel(study, i);
       for (BarChart* chart : {&waves, &bytes, &time}) chart->categories.push_back(label);
       AddLanes(lanes, label, report.lanes);
@@ -392,7 +398,7 @@ void AddStrategyCharts(ReportSection& section, const Study& study, const StudyPa
   section.charts = {std::move(studied), std::move(lanes), std::move(waves), std::move(bytes), std::move(time)};
 }
 
-std::span<const sim::DispatchReport> RunDispatches(const Study& study, const StudyPassRun& run) {
+std::span<const study::DispatchRecord> RunDispatches(const Study& study, const StudyPassRun& run) {
   return std::span(study.dispatches).subspan(run.firstDispatch, run.endDispatch - run.firstDispatch);
 }
 
@@ -418,8 +424,9 @@ ReportSection PassSection(const Study& study, const StudyPass& pass) {
   AddStrategyCharts(section, study, pass);
   for (const StudyPassRun& run : pass.runs) {
     for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) {
-      if (study.dispatches[i].name == pass.studiedDispatch && !study.dispatches[i].heat.Empty()) {
-        section.images.push_back(HeatImage("lane utilization, " + DispatchLabel(study, i), study.dispatches[i].heat));
+      const sim::DispatchReport& report = study.dispatches[i].report;
+      if (report.name == pass.studiedDispatch && !report.heat.Empty()) {
+        section.images.push_back(HeatImage("lane utilization, " + DispatchLabel(study, i), report.heat));
       }
     }
   }
@@ -428,11 +435,11 @@ ReportSection PassSection(const Study& study, const StudyPass& pass) {
 
 ReportSection DispatchesSection(const Study& study) {
   ReportSection section{"All dispatches", {kEstimateNote}, {}, {}, {}};
-  std::vector<std::vector<std::string>> rows = DispatchSummaryRows(study.dispatches, study.dispatchStrategies);
+  std::vector<std::vector<std::string>> rows = DispatchSummaryRows(study.dispatches);
   ReportTable table{"Per dispatch (every counter: counters.csv, report.json)", {"frame"}, {}};
   table.header.insert(table.header.end(), rows.front().begin(), rows.front().end());
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    std::vector<std::string> row{study.dispatchFrames[i - 1]};
+    std::vector<std::string> row{study.dispatches[i - 1].frame};
     row.insert(row.end(), rows[i].begin(), rows[i].end());
     table.rows.push_back(std::move(row));
   }
@@ -492,8 +499,7 @@ nlohmann::ordered_json StudyJson(const Study& study, const RunCommandOptions& op
                   "truth's edge pixels; null = infinite (identical) PSNR or no edge pixels; docs/metrics.md"},
       {"frames", nlohmann::ordered_json::array()},
       {"passes", nlohmann::ordered_json::array()},
-      {"dispatches", DispatchReportsJson(study.dispatches, study.gpu, nlohmann::ordered_json::object(),
-                                         study.dispatchStrategies, study.dispatchFrames)},
+      {"dispatches", DispatchReportsJson(study.dispatches, study.gpu, nlohmann::ordered_json::object())},
       {"host_seconds", study.hostSeconds},
   };
   // The configuration is echoed once, at the top.
@@ -523,7 +529,7 @@ void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions
   StageHeatMaps(dir, study);
   WriteJson(dir.Stage("report.json"), StudyJson(study, options));
   WriteText(dir.Stage("counters.csv"),
-            DispatchReportsCsv(study.dispatches, study.dispatchStrategies, study.dispatchFrames));
+            DispatchReportsCsv(study.dispatches));
   WriteText(dir.Stage("quality.csv"), QualityCsv(study));
   WriteText(dir.Stage("report.html"), RenderHtml(StudyHtml(study, options)));
 }

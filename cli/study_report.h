@@ -8,9 +8,12 @@
 #include "cli/output_dir.h"
 #include "cli/report_html.h"
 #include "cli/run_options.h"
-#include "cli/study.h"
+#include "study/study.h"
 
 namespace cli {
+
+using study::Study;
+using study::StudyFrame;
 
 inline constexpr const char* kReportSchema = "aasim.report";
 inline constexpr int kReportVersion = 1;

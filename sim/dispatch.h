@@ -16,6 +16,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -171,8 +172,11 @@ class Machine {
   template <typename... Stages>
   DispatchReport ComputeIndirect(Dispatch& dispatch, const IndirectCall& call, Stages&&... stages);
 
+  // Every report since the last take or clear, in dispatch order.
   const std::vector<DispatchReport>& Reports() const { return reports_; }
   void ClearReports() { reports_.clear(); }
+  // Hands the reports over and keeps none, so a long run does not hold a second copy.
+  std::vector<DispatchReport> TakeReports() { return std::exchange(reports_, {}); }
 
  private:
   // Compute groups are simulated in fixed runs of this many groups per chunk, independent of the

@@ -25,7 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/dispatch_output.h"
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 #include "cli/frame_options.h"
 #include "cli_test_util.h"
 #include "fmask/eqaa_surface.h"
@@ -421,9 +421,8 @@ sim::DispatchReport HandBuiltReport() {
 TEST(CliFrameDispatchOutput, JsonFollowsTheSchemaAndTheFieldTables) {
   const sim::DispatchReport report = HandBuiltReport();
   const sim::GpuConfig gpu = sim::GpuConfigByName(sim::kDefaultGpuName);
-  const std::vector<std::string> strategies{"queue"};
-  const nlohmann::ordered_json json =
-      cli::DispatchReportsJson(std::span(&report, 1), gpu, {{"scene", "hand-built"}}, strategies);
+  const study::DispatchRecord record{report, "", "demo", "queue"};
+  const nlohmann::ordered_json json = cli::DispatchReportsJson(std::span(&record, 1), gpu, {{"scene", "hand-built"}});
   EXPECT_EQ(json["schema"], "aasim.dispatches");
   EXPECT_EQ(json["version"], 1);
   EXPECT_EQ(json["gpu"]["name"], gpu.name);
@@ -434,6 +433,8 @@ TEST(CliFrameDispatchOutput, JsonFollowsTheSchemaAndTheFieldTables) {
   EXPECT_EQ(d["name"], report.name);
   EXPECT_EQ(d["kind"], "compute");
   EXPECT_EQ(d["strategy"], "queue");
+  EXPECT_EQ(d["pass"], "demo");
+  EXPECT_FALSE(d.contains("frame"));
   EXPECT_EQ(d["kernel"]["lds_bytes_per_group"], 400);
   EXPECT_EQ(d["kernel"]["valu_instructions_per_wave_estimate"], 12.5);
   EXPECT_EQ(d["group_size"], nlohmann::ordered_json({8, 8, 1}));
@@ -459,10 +460,6 @@ TEST(CliFrameDispatchOutput, JsonFollowsTheSchemaAndTheFieldTables) {
   EXPECT_EQ(d["raster"].size(), std::size(raster::kRasterCounterFields));
   EXPECT_EQ(d["raster"]["triangles/in"], 7);
   EXPECT_FALSE(d.contains("fragments"));
-
-  const std::vector<std::string> tooMany{"queue", "stencil"};
-  EXPECT_THROW(cli::DispatchReportsJson(std::span(&report, 1), gpu, {}, tooMany),
-               std::invalid_argument);
 }
 
 TEST(CliFrameDispatchOutput, CsvQuotesOnlyWhatNeedsIt) {
@@ -475,9 +472,9 @@ TEST(CliFrameDispatchOutput, CsvQuotesOnlyWhatNeedsIt) {
 }
 
 TEST(CliFrameDispatchOutput, CsvRowsMatchTheHeader) {
-  const sim::DispatchReport report = HandBuiltReport();
-  const std::vector<std::vector<std::string>> rows =
-      ParseCsv(cli::DispatchReportsCsv(std::span(&report, 1)));
+  const study::DispatchRecord record{HandBuiltReport(), "", "", ""};
+  const sim::DispatchReport& report = record.report;
+  const std::vector<std::vector<std::string>> rows = ParseCsv(cli::DispatchReportsCsv(std::span(&record, 1)));
   ASSERT_EQ(rows.size(), 2u);
   ASSERT_EQ(rows[0].size(), rows[1].size());
   std::map<std::string, std::string> row;
@@ -502,12 +499,11 @@ TEST(CliFrameDispatchOutput, SummaryNamesTheGpuAndAlignsItsColumns) {
   sim::DispatchReport other = HandBuiltReport();
   other.name = "x";
   other.lanes.waves = 123456;
-  const std::vector<sim::DispatchReport> reports{HandBuiltReport(), other};
-  const std::vector<std::string> strategies{"stencil", ""};
+  const std::vector<study::DispatchRecord> records{{HandBuiltReport(), "", "demo", "stencil"}, {other, "", "", ""}};
   sim::GpuConfig gpu;
   gpu.name = "test-gpu";
   std::ostringstream out;
-  cli::PrintDispatchSummary(out, reports, gpu, strategies);
+  cli::PrintDispatchSummary(out, records, gpu);
   std::vector<std::string> lines;
   std::istringstream in(out.str());
   for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -566,7 +562,7 @@ TEST(CliFrameDispatchOutput, HeatMapStemsAreFileNamesInRunOrder) {
   EXPECT_EQ(cli::HeatMapStem(12, "a b:c\\d", ""), "12-a-b-c-d");
 }
 
-// --- Frame inputs from a scene (cli/frame_input.h). ---
+// --- Frame inputs from a scene (study/frame_scene.h). ---
 
 TEST(CliFrameInput, ObjectIdsAreMeshIndicesAndColoursComeFromThePalette) {
   scenes::Scene scene;
@@ -584,7 +580,7 @@ TEST(CliFrameInput, ObjectIdsAreMeshIndicesAndColoursComeFromThePalette) {
                        .indices = {0, 1, 2, 1, 3, 2},
                        .material = -1};
   scene.meshes = {withNormals, without};
-  const cli::FrameScene frame = cli::ToFrameScene(scene, 1.0f);
+  const study::FrameScene frame = study::ToFrameScene(scene, 1.0f);
   EXPECT_EQ(frame.objectIds, (std::vector<std::uint32_t>{0, 1, 1}));
   EXPECT_EQ(frame.baseColours,
             (std::vector<glm::vec3>{scenes::kMeshPalette[0], scenes::kMeshPalette[1]}));
@@ -610,7 +606,7 @@ TEST(CliFrameInput, TexturedMaterialsCarryFactorTextureAndTexcoords) {
   scenes::Mesh plain{.name = "p", .positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, .normals = {},
                      .texcoords = {}, .indices = {0, 1, 2}, .material = 1};
   scene.meshes = {textured, plain};
-  const cli::FrameScene frame = cli::ToFrameScene(scene, 1.0f);
+  const study::FrameScene frame = study::ToFrameScene(scene, 1.0f);
   EXPECT_EQ(frame.baseColours, (std::vector<glm::vec3>{{0.5f, 0.25f, 1.0f}, {0.2f, 0.4f, 0.6f}}));
   EXPECT_EQ(frame.baseColourTextures, (std::vector<int>{0, -1}));
   ASSERT_EQ(frame.textures.size(), 1u);

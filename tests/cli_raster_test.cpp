@@ -27,7 +27,7 @@
 #include "cli/counters_json.h"
 #include "cli/eqaa_output.h"
 #include "cli/eqaa_trace.h"
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 #include "cli/image_io.h"
 #include "cli/ownership.h"
 #include "cli/raster_options.h"
@@ -266,7 +266,7 @@ TEST_F(CliRasterTest, SamplesExrHoldsPerSampleCoverageAndPrimitiveIds) {
 
   // The clip positions the command rasterized, from the same scene and camera code.
   const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
-  const cli::ClipSpaceScene clip = cli::ToClipSpace(scenes::LoadScene(scenePath.string(), aspect), aspect);
+  const study::ClipSpaceScene clip = study::ToClipSpace(scenes::LoadScene(scenePath.string(), aspect), aspect);
   std::vector<SnappedTriangle> triangles;
   for (std::size_t t = 0; t < indices.size() / 3; ++t) {
     triangles.push_back(Snap({clip.positions[indices[3 * t]], clip.positions[indices[3 * t + 1]],

@@ -10,7 +10,7 @@
 
 #include <oneapi/tbb/global_control.h>
 
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 #include "passes/compare.h"
 #include "passes/registry.h"
 #include "scenes/scene.h"
@@ -32,7 +32,7 @@ PassRun RunPass(const RegisteredPass& registered, Strategy strategy, int threads
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   const float aspect = static_cast<float>(kWidth) / kHeight;
   const scenes::Scene scene = scenes::LoadScene("builtin:default", aspect);
-  const cli::FrameScene frameScene = cli::ToFrameScene(scene, aspect);
+  const study::FrameScene frameScene = study::ToFrameScene(scene, aspect);
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   sim::FrameSettings settings;
   settings.width = kWidth;

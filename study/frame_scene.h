@@ -21,7 +21,7 @@ struct FrameGeometry;
 struct FrameSettings;
 }  // namespace sim
 
-namespace cli {
+namespace study {
 
 struct ClipSpaceScene {
   std::vector<glm::vec4> positions;
@@ -56,4 +56,4 @@ void ApplyLighting(const scenes::Lighting& lighting, sim::FrameSettings& setting
 // Normals from scenes::VertexNormals: the mesh's own, else smooth ones from its triangles.
 FrameScene ToFrameScene(const scenes::Scene& scene, float aspect);
 
-}  // namespace cli
+}  // namespace study

@@ -1,6 +1,6 @@
 // The main job's computation (see study.h).
 
-#include "cli/study.h"
+#include "study/study.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,9 +12,7 @@
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/parallel_for.h>
 
-#include "cli/frame_options.h"
-
-namespace cli {
+namespace study {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -23,56 +21,37 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// One line per step on the log, with the host time it took; silent with --progress never.
-class StepLog {
- public:
-  StepLog(std::ostream& out, bool enabled) : out_(out), enabled_(enabled) {}
-  template <typename Body>
-  auto Step(const std::string& what, Body&& body) {
-    const Clock::time_point start = Clock::now();
-    if constexpr (std::is_void_v<decltype(body())>) {
-      body();
-      Done(what, start);
-    } else {
-      auto result = body();
-      Done(what, start);
-      return result;
-    }
+// Runs `body` as one named step and tells the observer how long it took.
+template <typename Body>
+auto Step(const StudyObserver& observer, const std::string& what, Body&& body) {
+  const Clock::time_point start = Clock::now();
+  auto done = [&] {
+    if (observer.stepDone) observer.stepDone(what, SecondsSince(start));
+  };
+  if constexpr (std::is_void_v<decltype(body())>) {
+    body();
+    done();
+  } else {
+    auto result = body();
+    done();
+    return result;
   }
-
- private:
-  void Done(const std::string& what, Clock::time_point start) {
-    if (!enabled_) return;
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.2f", SecondsSince(start));
-    out_ << "aasim run: " << what << " (" << seconds << " s)\n" << std::flush;
-  }
-  std::ostream& out_;
-  bool enabled_;
-};
-
-scenes::ProgressCallback ProgressBar(const RunCommandOptions& options, std::string label) {
-  switch (options.progressMode) {
-    case ProgressMode::Never: return {};
-    case ProgressMode::Always: return scenes::StderrProgressBar(std::move(label), true);
-    case ProgressMode::Auto: break;
-  }
-  return scenes::StderrProgressBar(std::move(label), false);
 }
 
-StudyGroundTruth RenderGroundTruth(const StudyInputs& inputs, const RunCommandOptions& options) {
+StudyGroundTruth RenderGroundTruth(const StudyInputs& inputs, const ExperimentConfig& config,
+                                   const StudyObserver& observer) {
   const Clock::time_point start = Clock::now();
   scenes::GroundTruthSettings settings;
-  settings.width = options.width;
-  settings.height = options.height;
-  settings.samplesPerPixel = options.groundTruthSamples;
-  const scenes::ProgressCallback progress = ProgressBar(options, "ground truth");
+  settings.width = config.width;
+  settings.height = config.height;
+  settings.samplesPerPixel = config.groundTruth.samplesPerPixel;
   StudyGroundTruth truth;
-  if (options.noCache) {
-    truth.image = scenes::RenderGroundTruth(inputs.scene, inputs.scene.camera, settings, progress);
+  if (!config.groundTruth.cache) {
+    truth.image = scenes::RenderGroundTruth(inputs.scene, inputs.scene.camera, settings, observer.groundTruthProgress);
   } else {
-    const scenes::GroundTruthCache cache(options.cache);
-    scenes::CachedGroundTruth cached = cache.LoadOrRender(inputs.scene, inputs.scene.camera, settings, progress);
+    const scenes::GroundTruthCache cache(*config.groundTruth.cache);
+    scenes::CachedGroundTruth cached =
+        cache.LoadOrRender(inputs.scene, inputs.scene.camera, settings, observer.groundTruthProgress);
     truth.image = std::move(cached.image);
     truth.cacheHit = cached.cacheHit;
     truth.cacheFile = cached.file;
@@ -117,64 +96,65 @@ sim::Texture2D<glm::vec4> FetchResolve(const fmask::EqaaSurface& surface) {
   return resolved;
 }
 
-sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const RunCommandOptions& options,
-                                    std::size_t mode) {
+sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentConfig& config, std::size_t mode) {
   sim::FrameSettings settings;
-  settings.width = options.width;
-  settings.height = options.height;
-  settings.eqaa = options.eqaaModes[mode];
+  settings.width = config.width;
+  settings.height = config.height;
+  settings.eqaa = config.modes[mode];
   settings.pattern = inputs.patterns[mode];
-  settings.policy = fmask::PolicyByName(options.policy);
-  settings.flush = WaveFlushByName(options.flush);
+  settings.policy = fmask::PolicyByName(config.policy);
+  settings.flush = config.flush;
   ApplyLighting(inputs.scene.lighting, settings);
   return settings;
 }
 
 class StudyRunner {
  public:
-  StudyRunner(const StudyInputs& inputs, const RunCommandOptions& options, std::ostream& log)
-      : inputs_(inputs), options_(options), log_(log, options.progressMode != ProgressMode::Never),
-        machine_(inputs.gpu) {}
+  StudyRunner(const StudyInputs& inputs, const ExperimentConfig& config, const StudyObserver& observer)
+      : inputs_(inputs), config_(config), observer_(observer), machine_(inputs.gpu) {}
 
-  Study Run(const FrameCallback& onFrame) {
+  Study Run() {
     const Clock::time_point start = Clock::now();
     study_.sceneName = inputs_.scene.name;
     study_.triangles = inputs_.scene.TriangleCount();
     study_.gpu = inputs_.gpu;
-    study_.groundTruth = log_.Step(GroundTruthStep(), [&] { return RenderGroundTruth(inputs_, options_); });
-    for (std::size_t mode = 0; mode < options_.eqaaModes.size(); ++mode) RunMode(mode, onFrame);
-    study_.dispatches = machine_.Reports();
+    study_.groundTruth =
+        Step(observer_, GroundTruthStep(), [&] { return RenderGroundTruth(inputs_, config_, observer_); });
+    for (std::size_t mode = 0; mode < config_.modes.size(); ++mode) RunMode(mode);
     study_.hostSeconds = SecondsSince(start);
     return std::move(study_);
   }
 
  private:
   std::string GroundTruthStep() const {
-    return "ground truth " + std::to_string(options_.width) + "x" + std::to_string(options_.height) + ", " +
-           std::to_string(options_.groundTruthSamples) + " rays per pixel" +
-           (options_.noCache ? "" : " (cache: " + options_.cache + ")");
+    return "ground truth " + std::to_string(config_.width) + "x" + std::to_string(config_.height) + ", " +
+           std::to_string(config_.groundTruth.samplesPerPixel) + " rays per pixel" +
+           (config_.groundTruth.cache ? " (cache: " + config_.groundTruth.cache->string() + ")" : "");
   }
 
-  void RunMode(std::size_t mode, const FrameCallback& onFrame) {
-    const std::string label = fmask::EqaaName(options_.eqaaModes[mode]);
-    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, options_, mode));
-    StudyFrame frame{.mode = options_.eqaaModes[mode],
-                     .image = {label, "frames/" + ModeSlug(options_.eqaaModes[mode]), {"frame colour", 1, 1}, {}},
-                     .drawDispatch = machine_.Reports().size()};
-    log_.Step("frame " + label, [&] { pipeline.Render(inputs_.frame.Geometry()); });
-    Tag(label, "");
+  void RunMode(std::size_t mode) {
+    const fmask::EqaaConfig& eqaa = config_.modes[mode];
+    const std::string label = fmask::EqaaName(eqaa);
+    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode));
+    StudyFrame frame{.mode = eqaa,
+                     .image = {label, "frames/" + ModeSlug(eqaa), {"frame colour", 1, 1}, {}},
+                     .drawDispatch = study_.dispatches.size()};
+    Step(observer_, "frame " + label, [&] { pipeline.Render(inputs_.frame.Geometry()); });
+    TakeDispatches(machine_, study_.dispatches, label);
     frame.image.colour = pipeline.Colour();
     frame.fragments = pipeline.Fragments();
-    frame.image.quality = log_.Step("metrics " + label, [&] { return Score(frame.image.colour, study_.groundTruth); });
+    frame.image.quality =
+        Step(observer_, "metrics " + label, [&] { return Score(frame.image.colour, study_.groundTruth); });
     if (frame.mode.fragments < frame.mode.coverageSamples) {
       ScoredImage fetch{label + " fetch", frame.image.folder + "/fetch", FetchResolve(pipeline.Eqaa()), {}};
-      fetch.quality = log_.Step("metrics " + fetch.label, [&] { return Score(fetch.colour, study_.groundTruth); });
+      fetch.quality =
+          Step(observer_, "metrics " + fetch.label, [&] { return Score(fetch.colour, study_.groundTruth); });
       frame.fetchResolve = std::move(fetch);
     }
-    if (onFrame) onFrame(frame, pipeline);
+    if (observer_.frameDone) observer_.frameDone(frame, pipeline);
     // Post-process AA works on the aliased frame a renderer without MSAA produces: the first mode.
     if (mode == 0) {
-      for (const passes::PassConfig& pass : options_.postPasses) RunPass(pass, pipeline, label);
+      for (const passes::PassConfig& pass : config_.passes) RunPass(pass, pipeline, label);
     }
     study_.frames.push_back(std::move(frame));
   }
@@ -191,14 +171,14 @@ class StudyRunner {
     std::optional<passes::PassOutput> first;
     for (const passes::Strategy strategy : info.strategies) {
       const std::string strategyName(passes::StrategyName(strategy));
-      StudyPassRun run{.strategy = strategy, .firstDispatch = machine_.Reports().size(), .endDispatch = 0, .layers = {}};
+      StudyPassRun run{.strategy = strategy, .firstDispatch = study_.dispatches.size(), .endDispatch = 0, .layers = {}};
       // One instance per strategy: a pass with history must not carry one strategy's into the other's.
       const std::unique_ptr<passes::Pass> pass = config.Make();
-      passes::PassOutput output = log_.Step("pass " + name + " [" + strategyName + "]", [&] {
+      passes::PassOutput output = Step(observer_, "pass " + name + " [" + strategyName + "]", [&] {
         return pass->Run(machine_, passes::FrameInputsOf(pipeline), strategy);
       });
-      run.endDispatch = machine_.Reports().size();
-      Tag(frameLabel, strategyName);
+      TakeDispatches(machine_, study_.dispatches, frameLabel, name, strategyName);
+      run.endDispatch = study_.dispatches.size();
       run.layers = output.layers;
       if (!first) {
         first = std::move(output);
@@ -209,20 +189,14 @@ class StudyRunner {
     }
     result.workItems = first->workItems;
     result.image.colour = std::move(first->colour);
-    result.image.quality = log_.Step("metrics " + name, [&] { return Score(result.image.colour, study_.groundTruth); });
+    result.image.quality =
+        Step(observer_, "metrics " + name, [&] { return Score(result.image.colour, study_.groundTruth); });
     study_.passes.push_back(std::move(result));
   }
 
-  // Labels the dispatches added since the last call.
-  void Tag(const std::string& frame, const std::string& strategy) {
-    const std::size_t count = machine_.Reports().size();
-    study_.dispatchFrames.resize(count, frame);
-    study_.dispatchStrategies.resize(count, strategy);
-  }
-
   const StudyInputs& inputs_;
-  const RunCommandOptions& options_;
-  StepLog log_;
+  const ExperimentConfig& config_;
+  const StudyObserver& observer_;
   sim::Machine machine_;
   Study study_;
 };
@@ -234,22 +208,21 @@ std::string ModeSlug(const fmask::EqaaConfig& mode) {
          std::to_string(mode.fragments) + "f";
 }
 
-StudyInputs LoadStudyInputs(const RunCommandOptions& options) {
-  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  StudyInputs inputs{scenes::LoadScene(options.scene, aspect), {}, {}, sim::GpuConfigByName(options.gpu)};
+StudyInputs LoadStudyInputs(const ExperimentConfig& config) {
+  const float aspect = static_cast<float>(config.width) / static_cast<float>(config.height);
+  StudyInputs inputs{scenes::LoadScene(config.scene, aspect), {}, {}, sim::GpuConfigByName(config.gpu)};
   inputs.frame = ToFrameScene(inputs.scene, aspect);
-  for (const fmask::EqaaConfig& mode : options.eqaaModes) {
-    inputs.patterns.push_back(raster::ResolvePattern(options.pattern, mode.coverageSamples));
+  for (const fmask::EqaaConfig& mode : config.modes) {
+    inputs.patterns.push_back(raster::ResolvePattern(config.pattern, mode.coverageSamples));
   }
   return inputs;
 }
 
-Study RunStudy(const StudyInputs& inputs, const RunCommandOptions& options, const FrameCallback& onFrame,
-               std::ostream& log) {
-  StudyRunner runner(inputs, options, log);
-  Study study = runner.Run(onFrame);
+Study RunStudy(const StudyInputs& inputs, const ExperimentConfig& config, const StudyObserver& observer) {
+  StudyRunner runner(inputs, config, observer);
+  Study study = runner.Run();
   study.threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   return study;
 }
 
-}  // namespace cli
+}  // namespace study

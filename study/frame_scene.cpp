@@ -1,6 +1,6 @@
-// Scene -> clip-space triangle list and frame-pipeline inputs (see frame_input.h).
+// Scene -> clip-space triangle list and frame-pipeline inputs (see frame_scene.h).
 
-#include "cli/frame_input.h"
+#include "study/frame_scene.h"
 
 #include <algorithm>
 #include <string>
@@ -11,7 +11,7 @@
 #include "scenes/shading.h"
 #include "sim/frame.h"
 
-namespace cli {
+namespace study {
 
 ClipSpaceScene ToClipSpace(const scenes::Scene& scene, float aspect) {
   const glm::mat4 viewProjection = scene.camera.Projection(aspect) * scene.camera.View();
@@ -109,4 +109,4 @@ sim::FrameGeometry FrameScene::Geometry() const {
           .textures = textures};
 }
 
-}  // namespace cli
+}  // namespace study

@@ -1,9 +1,9 @@
 #pragma once
-// The main job's computation (`aasim run`): the ray-traced ground truth, the scene rendered on
+// The main study (`aasim run`) as a library: the ray-traced ground truth, the scene rendered on
 // the modelled GPU under every requested EQAA mode, every post pass under each of its dispatch
 // strategies on the first mode's frame, and every image scored against the ground truth. The
 // result keeps what the report shows; per-frame surfaces too large to keep (EQAA planes, pixel
-// targets) are handed to a callback while they exist.
+// targets) are handed to an observer while they exist. Configured by ExperimentConfig.
 
 #include <cstdint>
 #include <filesystem>
@@ -14,9 +14,9 @@
 
 #include <glm/vec4.hpp>
 
-#include "cli/frame_input.h"
-#include "cli/frame_output.h"
-#include "cli/run_options.h"
+#include "study/dispatch_log.h"
+#include "study/experiment.h"
+#include "study/frame_scene.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
 #include "passes/compare.h"
@@ -26,7 +26,7 @@
 #include "sim/dispatch.h"
 #include "sim/frame.h"
 
-namespace cli {
+namespace study {
 
 // An image scored against the ground truth. Edge scores are NaN when the ground truth has no
 // edge pixels (nothing to restrict them to).
@@ -83,11 +83,7 @@ struct Study {
   std::vector<StudyFrame> frames;
   std::vector<StudyPass> passes;
   sim::GpuConfig gpu;
-  std::vector<sim::DispatchReport> dispatches;
-  // Parallel to dispatches: the frame each dispatch belongs to, and the strategy of the post
-  // pass it ran in ("" outside post passes).
-  std::vector<std::string> dispatchFrames;
-  std::vector<std::string> dispatchStrategies;
+  std::vector<DispatchRecord> dispatches;
   int threads = 0;
   double hostSeconds = 0.0;
 };
@@ -96,23 +92,27 @@ struct Study {
 struct StudyInputs {
   scenes::Scene scene;
   FrameScene frame;
-  std::vector<raster::SamplePattern> patterns;  // per mode of options.eqaaModes
+  std::vector<raster::SamplePattern> patterns;  // per mode of ExperimentConfig::modes
   sim::GpuConfig gpu;
 };
 
 // Throws a one-line error naming the input (scene, pattern, GPU configuration).
-StudyInputs LoadStudyInputs(const RunCommandOptions& options);
+StudyInputs LoadStudyInputs(const ExperimentConfig& config);
 
-// Called once per mode while its frame pipeline still holds the full surfaces.
-using FrameCallback = std::function<void(const StudyFrame&, const sim::FramePipeline&)>;
+// What the caller sees while the study runs. Every member may be empty.
+struct StudyObserver {
+  // After each step ("frame 8S/4Z/2F", "pass demo [queue]"), with its host time.
+  std::function<void(const std::string& step, double seconds)> stepDone;
+  scenes::ProgressCallback groundTruthProgress;
+  // Once per mode, while its frame pipeline still holds the full surfaces.
+  std::function<void(const StudyFrame&, const sim::FramePipeline&)> frameDone;
+};
 
 // "8S/4Z/2F" -> "8s-4z-2f", for folder names.
 std::string ModeSlug(const fmask::EqaaConfig& mode);
 
-// `options` must have passed ResolveRunOptions; the caller pins the thread count. Steps are
-// logged on `log` (one line each, with host times) unless --progress never; progress bars on
-// stderr follow --progress.
-Study RunStudy(const StudyInputs& inputs, const RunCommandOptions& options,
-               const FrameCallback& onFrame, std::ostream& log);
+// The caller pins the host thread count (tbb::global_control); images and counters do not
+// depend on it.
+Study RunStudy(const StudyInputs& inputs, const ExperimentConfig& config, const StudyObserver& observer = {});
 
-}  // namespace cli
+}  // namespace study

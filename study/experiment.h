@@ -1,0 +1,38 @@
+#pragma once
+// What one experiment is, as plain data (no command line): the scene and viewport, the EQAA modes
+// and their sample pattern, the machine, the post passes with their settings and strategies, and
+// the ground truth. `aasim run` parses its options into this; benchmarks and tests fill it
+// directly.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fmask/eqaa_surface.h"
+#include "passes/registry.h"
+#include "sim/wave.h"
+
+namespace study {
+
+struct GroundTruthConfig {
+  int samplesPerPixel = 256;  // a perfect square: n x n jittered strata
+  // Where rendered ground truths are cached; nullopt renders without a cache.
+  std::optional<std::filesystem::path> cache;
+};
+
+struct ExperimentConfig {
+  std::string scene = "builtin:default";  // "builtin:NAME" or a glTF path
+  int width = 1920, height = 1080;
+  // Rendered in order; post passes work on the first (the aliased frame a renderer without MSAA
+  // produces, when it is 1S/1Z/1F).
+  std::vector<fmask::EqaaConfig> modes;
+  std::string pattern = "eqaa";  // built-in pattern name or file, resolved for each mode's S
+  std::string policy = "hraa";   // fragment arbitration policy (docs/eqaa.md)
+  std::string gpu;               // built-in name or file
+  sim::WaveFlush flush = sim::WaveFlush::MixPrimitives;
+  std::vector<passes::PassConfig> passes;
+  GroundTruthConfig groundTruth;
+};
+
+}  // namespace study
