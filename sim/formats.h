@@ -33,7 +33,8 @@ int BytesPerTexel(Format format);
 int Channels(Format format);
 std::string_view FormatName(Format format);
 // Formats whose bilinear filter runs on the 8-bit codes in fixed point (see FixedPointCoord).
-// sRGB is not one: D3D filters after decoding, and llvmpipe takes its float path for it.
+// sRGB is not one: it is decoded, then filtered in float, as llvmpipe does (its 8-bit path
+// excludes sRGB: u_format.c util_format_fits_8unorm).
 bool IsUnorm8(Format format);
 // Whether a view of `view` format may read a resource created as `resource` (the typeless
 // family: RGBA8Unorm and RGBA8Srgb share their bytes).
@@ -53,7 +54,7 @@ float Float10ToFloat(std::uint16_t bits);
 
 // One channel of a texel in the host representation: what a store of `value` into channel
 // `channel` of `format` keeps, and what a view of `format` reads from what was kept. Channels
-// past the format's read as D3D's defaults (0, and 1 for alpha).
+// past the format's read as D3D's defaults (0, and 1 for alpha; D3D11.3 spec §19.1.3.3).
 float QuantizeChannel(Format format, int channel, float value);
 float DecodeChannel(Format format, int channel, float stored);
 
@@ -132,7 +133,7 @@ T Decode(Format format, T stored) {
 // coordinate times 256 * size, rounded to nearest (even) as one float32 product
 // (lp_bld_arit.c lp_build_iround: cvtps2dq), minus 128 (half a texel); the first texel is
 // that >> 8 (arithmetic), the weight its low 8 bits. D3D10+ asks for at least 8 bits of
-// sub-texel precision (aa-facts §1.9).
+// sub-texel precision (D3D11.3 spec §7.18.16.1; aa-facts §1.9).
 struct FixedPointCoord {
   int texel;   // left (or top) texel of the footprint, before offsets and addressing
   int weight;  // 0..255, weight of the right (or bottom) texel in 1/256

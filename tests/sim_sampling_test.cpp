@@ -228,8 +228,8 @@ TEST(SimSampling, OffsetsMoveEveryAccessByWholeTexels) {
 }
 
 // One RGBA8 texture, three dispatches: an sRGB view stores linear colour (encoded), a UNORM view
-// reads the codes, an sRGB view reads them decoded; sRGB views filter decoded values (D3D's
-// order, and llvmpipe's: it never filters sRGB in 8-bit fixed point).
+// reads the codes, an sRGB view reads them decoded; sRGB views filter decoded values (llvmpipe
+// never filters sRGB in 8-bit fixed point).
 TEST(SimSampling, UnormAndSrgbViewsOfOneTextureShareItsBytes) {
   Machine machine(GpuConfigByName("ps4-class"));
   Texture2D<glm::vec4> colour("colour", 2, 1, Format::RGBA8Unorm);
