@@ -7,12 +7,14 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "raster/limits.h"
+#include "sim/formats.h"
 #include "sim/wave.h"
 
 namespace sim {
@@ -56,8 +58,10 @@ inline void Resource::Touch(std::vector<std::uint64_t>& lines, std::size_t byteO
   }
 }
 
-// Row-major texels; texelBytes is the modelled format size (e.g. 4 for RGBA8 even though the
-// host keeps float RGBA).
+// Row-major texels. Without a Format the host keeps T unchanged and texelBytes is only the
+// modelled size (e.g. 4 for RGBA8 even though the host keeps float RGBA). With a Format
+// (sim/formats.h) the size comes from it and every texel is kept as its views read it: stores
+// through views, Fill and the fill value are quantised; At() is the raw host value.
 template <typename T>
 class Texture2D : public Resource {
  public:
@@ -67,10 +71,17 @@ class Texture2D : public Resource {
                      static_cast<std::size_t>(texelBytes)),
         width_(width), height_(height), texelBytes_(texelBytes),
         texels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill) {}
+  Texture2D(std::string name, int width, int height, Format format, T fill = T{})
+    requires FormattableTexel<T>
+      : Texture2D(CheckedFormat(std::move(name), format), width, height, BytesPerTexel(format)) {
+    format_ = format;
+    Fill(fill);
+  }
 
   int Width() const { return width_; }
   int Height() const { return height_; }
   int TexelBytes() const { return texelBytes_; }
+  std::optional<Format> TexelFormat() const { return format_; }
   bool Contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
   std::size_t Index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
@@ -79,7 +90,7 @@ class Texture2D : public Resource {
   const T& At(int x, int y) const { return texels_[Index(x, y)]; }
   std::span<T> Texels() { return texels_; }
   std::span<const T> Texels() const { return texels_; }
-  void Fill(const T& value) { std::fill(texels_.begin(), texels_.end(), value); }
+  void Fill(const T& value) { std::fill(texels_.begin(), texels_.end(), Kept(value)); }
 
  private:
   static std::string CheckedName(std::string name, int width, int height, int texelBytes) {
@@ -91,8 +102,24 @@ class Texture2D : public Resource {
     if (texelBytes < 1) throw std::invalid_argument("texture '" + name + "': texel size must be >= 1 byte");
     return name;
   }
+  static std::string CheckedFormat(std::string name, Format format)
+    requires FormattableTexel<T>
+  {
+    if (!CanHold<T>(format)) {
+      throw std::invalid_argument("texture '" + name + "': its texel type cannot hold " +
+                                  std::string(FormatName(format)));
+    }
+    return name;
+  }
+  T Kept(const T& value) const {
+    if constexpr (FormattableTexel<T>) {
+      if (format_) return Quantize(*format_, value);
+    }
+    return value;
+  }
 
   int width_, height_, texelBytes_;
+  std::optional<Format> format_;
   std::vector<T> texels_;
 };
 

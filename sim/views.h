@@ -10,9 +10,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include "raster/depth_stencil.h"
 #include "sim/lanes.h"
@@ -29,37 +33,113 @@ inline ResourceTraffic& Traffic(const LaneBase& lane, int slot) {
 // How samplers address texels outside [0, 1): clamp to the edge, or wrap (glTF's default).
 enum class AddressMode : std::uint8_t { Clamp, Repeat };
 
+// Texel offsets of Load, Sample, SampleLevel and Gather range -8..7 per axis (d3d11.h
+// D3D11_COMMONSHADER_TEXEL_OFFSET_MAX_NEGATIVE = -8, _MAX_POSITIVE = 7).
+inline constexpr int kMinTexelOffset = -8;
+inline constexpr int kMaxTexelOffset = 7;
+
+namespace detail {
+[[noreturn]] inline void ThrowBadTexelArgument(const LaneBase& lane, const std::string& what) {
+  throw KernelError(*lane.chunk->dispatchName + ": " + what);
+}
+inline void CheckTexelOffset(const LaneBase& lane, glm::ivec2 offset) {
+  if (offset.x < kMinTexelOffset || offset.x > kMaxTexelOffset || offset.y < kMinTexelOffset ||
+      offset.y > kMaxTexelOffset) {
+    ThrowBadTexelArgument(lane, "texel offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
+                                    ") outside -8..7");
+  }
+}
+}  // namespace detail
+
+// A texture read through a view format: the texture's own, or another of its typeless family
+// (As). Loads and samples decode through the view format (an sRGB view returns linear values);
+// a formatted UNORM8 view filters bilinearly in 8-bit fixed point, as llvmpipe does
+// (sim/formats.h); everything else filters in float. Textures have no mips, so every sample
+// reads level 0: HLSL's SampleLevel(s, uv, 0) and Sample(s, uv) are both SamplePoint or
+// SampleBilinear here. Offsets are whole texels added to the texel index before addressing.
 template <typename T>
 class TextureView {
  public:
-  TextureView(const Texture2D<T>& texture, int slot) : texture_(&texture), slot_(slot) {}
+  using Gathered = glm::vec<4, TexelScalar<T>>;
 
+  TextureView(const Texture2D<T>& texture, int slot)
+      : texture_(&texture), slot_(slot), format_(texture.TexelFormat()) {}
+
+  // The same binding (same traffic counters, same bytes) read through another format: SMAA
+  // reads one RGBA8 colour texture through a UNORM view and through an sRGB view (aa-facts §1.9).
+  TextureView As(Format format) const {
+    const std::optional<Format> resource = texture_->TexelFormat();
+    if (!resource || !ViewCompatible(*resource, format)) {
+      throw std::invalid_argument("texture '" + texture_->Name() + "': no " + std::string(FormatName(format)) +
+                                  " view of a " + std::string(resource ? FormatName(*resource) : "format-less") +
+                                  " texture");
+    }
+    TextureView view = *this;
+    view.format_ = format;
+    return view;
+  }
+  std::optional<Format> ViewFormat() const { return format_; }
   int Width() const { return texture_->Width(); }
   int Height() const { return texture_->Height(); }
 
-  T Load(const LaneBase& lane, int x, int y) const {
+  T Load(const LaneBase& lane, int x, int y, glm::ivec2 offset = {0, 0}) const {
+    detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 1);
-    return Texel(x, y);
+    return Read(x + offset.x, y + offset.y);
   }
   // uv in [0, 1] spans the texture; outside it the address mode applies.
-  T SamplePoint(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp) const {
+  T SamplePoint(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
+                glm::ivec2 offset = {0, 0}) const {
+    detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 1);
     const glm::vec2 texel = uv * glm::vec2(Width(), Height());
-    return Texel(Address(static_cast<int>(std::floor(texel.x)), Width(), mode),
-                 Address(static_cast<int>(std::floor(texel.y)), Height(), mode));
+    return Read(Address(static_cast<int>(std::floor(texel.x)) + offset.x, Width(), mode),
+                Address(static_cast<int>(std::floor(texel.y)) + offset.y, Height(), mode));
   }
-  // Texel centres at +0.5, the same weights as scenes::SampleBilinearRepeat for Repeat.
-  T SampleBilinear(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp) const {
+  T SampleBilinear(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
+                   glm::ivec2 offset = {0, 0}) const {
+    if constexpr (FloatTexel<T>) {
+      if (format_ && IsUnorm8(*format_)) return SampleBilinearUnorm8(lane, uv, mode, offset);
+    }
+    return SampleBilinearFloat(lane, uv, mode, offset);
+  }
+  // Float weights on decoded texels, whatever the format. Texel centres at +0.5, the same
+  // weights as scenes::SampleBilinearRepeat for Repeat.
+  T SampleBilinearFloat(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
+                        glm::ivec2 offset = {0, 0}) const {
+    detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 4);
     const glm::vec2 texel = uv * glm::vec2(Width(), Height()) - 0.5f;
     const glm::vec2 base = glm::floor(texel);
     const glm::vec2 f = texel - base;
-    const int x0 = static_cast<int>(base.x), y0 = static_cast<int>(base.y);
+    const int x0 = static_cast<int>(base.x) + offset.x, y0 = static_cast<int>(base.y) + offset.y;
     const int x1 = Address(x0 + 1, Width(), mode), y1 = Address(y0 + 1, Height(), mode);
     const int xa = Address(x0, Width(), mode), ya = Address(y0, Height(), mode);
-    const T top = Texel(xa, ya) * (1.0f - f.x) + Texel(x1, ya) * f.x;
-    const T bottom = Texel(xa, y1) * (1.0f - f.x) + Texel(x1, y1) * f.x;
+    const T top = Read(xa, ya) * (1.0f - f.x) + Read(x1, ya) * f.x;
+    const T bottom = Read(xa, y1) * (1.0f - f.x) + Read(x1, y1) * f.x;
     return top * (1.0f - f.y) + bottom * f.y;
+  }
+  // The four texels of the bilinear footprint, one channel (0..3 = R..A; channels the format
+  // lacks read 0, alpha 1), in D3D's gather4 order ("counter clockwise order starting with the
+  // sample to the lower left", HLSL reference, gather4 (sm5 - asm); GLSL textureGather is the
+  // same): x = (u0, v1), y = (u1, v1), z = (u1, v0), w = (u0, v0), v growing downwards. The
+  // footprint is the float one (llvmpipe gathers on its float path, lp_bld_sample_soa.c).
+  Gathered Gather(const LaneBase& lane, glm::vec2 uv, int channel = 0, glm::ivec2 offset = {0, 0},
+                  AddressMode mode = AddressMode::Clamp) const {
+    detail::CheckTexelOffset(lane, offset);
+    if (channel < 0 || channel > 3) detail::ThrowBadTexelArgument(lane, "gather channel outside 0..3");
+    CountFetch(lane, 4);
+    const glm::vec2 texel = uv * glm::vec2(Width(), Height()) - 0.5f;
+    const int x0 = static_cast<int>(std::floor(texel.x)) + offset.x;
+    const int y0 = static_cast<int>(std::floor(texel.y)) + offset.y;
+    const int u0 = Address(x0, Width(), mode), u1 = Address(x0 + 1, Width(), mode);
+    const int v0 = Address(y0, Height(), mode), v1 = Address(y0 + 1, Height(), mode);
+    const auto pick = [&](int x, int y) -> TexelScalar<T> {
+      const T value = Read(x, y);
+      if (channel < kTexelComponents<T>) return TexelComponent(value, channel);
+      return channel == 3 ? TexelScalar<T>{1} : TexelScalar<T>{0};
+    };
+    return {pick(u0, v1), pick(u1, v1), pick(u1, v0), pick(u0, v0)};
   }
 
  private:
@@ -68,12 +148,31 @@ class TextureView {
     const int r = i % size;
     return r < 0 ? r + size : r;
   }
+  // sim/formats.h ToFixedPointCoord and LerpUnorm8 on the 8-bit codes, in x then in y.
+  T SampleBilinearUnorm8(const LaneBase& lane, glm::vec2 uv, AddressMode mode, glm::ivec2 offset) const {
+    detail::CheckTexelOffset(lane, offset);
+    CountFetch(lane, 4);
+    const FixedPointCoord cx = ToFixedPointCoord(uv.x, Width()), cy = ToFixedPointCoord(uv.y, Height());
+    const int x0 = cx.texel + offset.x, y0 = cy.texel + offset.y;
+    const int xa = Address(x0, Width(), mode), x1 = Address(x0 + 1, Width(), mode);
+    const int ya = Address(y0, Height(), mode), y1 = Address(y0 + 1, Height(), mode);
+    const T t00 = Texel(xa, ya), t10 = Texel(x1, ya), t01 = Texel(xa, y1), t11 = Texel(x1, y1);
+    T result{};
+    for (int c = 0; c < kTexelComponents<T>; ++c) {
+      const auto code = [c](const T& texel) { return static_cast<int>(FloatToUnorm8(TexelComponent(texel, c))); };
+      const int top = LerpUnorm8(cx.weight, code(t00), code(t10));
+      const int bottom = LerpUnorm8(cx.weight, code(t01), code(t11));
+      TexelComponent(result, c) = Unorm8ToFloat(static_cast<std::uint8_t>(LerpUnorm8(cy.weight, top, bottom)));
+    }
+    return result;
+  }
   // One fetch instruction reading `texels` texels (the footprint; touched lines come from Texel).
   void CountFetch(const LaneBase& lane, int texels) const {
     ResourceTraffic& traffic = detail::Traffic(lane, slot_);
     ++traffic.fetches;
     traffic.bytesRead += static_cast<std::uint64_t>(texels) * static_cast<std::uint64_t>(texture_->TexelBytes());
   }
+  // The stored texel; out of range, zero in every channel (D3D).
   T Texel(int x, int y) const {
     if (!texture_->Contains(x, y)) return T{};
     const std::size_t index = texture_->Index(x, y);
@@ -81,9 +180,17 @@ class TextureView {
     texture_->TouchRead(index * bytes, bytes);
     return texture_->At(x, y);
   }
+  // The texel as a shader reads it through this view.
+  T Read(int x, int y) const {
+    if constexpr (FormattableTexel<T>) {
+      if (format_ == Format::RGBA8Srgb) return Decode(Format::RGBA8Srgb, Texel(x, y));
+    }
+    return Texel(x, y);
+  }
 
   const Texture2D<T>* texture_;
   int slot_;
+  std::optional<Format> format_;
 };
 
 template <typename T>
@@ -91,18 +198,36 @@ class RwTextureView {
  public:
   RwTextureView(Texture2D<T>& texture, int slot) : texture_(&texture), read_(texture, slot), slot_(slot) {}
 
+  // The same binding through another format of its typeless family (TextureView::As): an sRGB
+  // view of an RGBA8 texture encodes what it stores.
+  RwTextureView As(Format format) const {
+    RwTextureView view = *this;
+    view.read_ = read_.As(format);
+    return view;
+  }
+  std::optional<Format> ViewFormat() const { return read_.ViewFormat(); }
   int Width() const { return texture_->Width(); }
   int Height() const { return texture_->Height(); }
-  T Load(const LaneBase& lane, int x, int y) const { return read_.Load(lane, x, y); }
+  T Load(const LaneBase& lane, int x, int y, glm::ivec2 offset = {0, 0}) const {
+    return read_.Load(lane, x, y, offset);
+  }
+  // Quantised through the view format as the hardware's conversion does (sim/formats.h).
   void Store(const LaneBase& lane, int x, int y, const T& value) const {
     if (lane.helper || !texture_->Contains(x, y)) return;
     const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
     detail::Traffic(lane, slot_).bytesWritten += bytes;
     texture_->TouchWrite(texture_->Index(x, y) * bytes, bytes);
-    texture_->At(x, y) = value;
+    texture_->At(x, y) = Kept(value);
   }
 
  private:
+  T Kept(const T& value) const {
+    if constexpr (FormattableTexel<T>) {
+      if (const std::optional<Format> format = read_.ViewFormat()) return Quantize(*format, value);
+    }
+    return value;
+  }
+
   Texture2D<T>* texture_;
   TextureView<T> read_;
   int slot_;

@@ -1,0 +1,194 @@
+// Texel format conversions (see formats.h). Sections cited as "D3D11 §" are from the
+// Direct3D 11.3 functional specification (microsoft/DirectX-Specs, d3d/archive).
+
+#include "sim/formats.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "raster/limits.h"
+
+namespace sim {
+
+namespace {
+
+struct FormatInfo {
+  std::string_view name;
+  int bytes;
+  int channels;
+};
+
+FormatInfo Info(Format format) {
+  switch (format) {
+    case Format::R8Unorm: return {"R8Unorm", 1, 1};
+    case Format::RG8Unorm: return {"RG8Unorm", 2, 2};
+    case Format::RGBA8Unorm: return {"RGBA8Unorm", 4, 4};
+    case Format::RGBA8Srgb: return {"RGBA8Srgb", 4, 4};
+    case Format::R11G11B10Float: return {"R11G11B10Float", 4, 3};
+    case Format::RG16Float: return {"RG16Float", 4, 2};
+    case Format::RGBA16Float: return {"RGBA16Float", 8, 4};
+    case Format::R32Float: return {"R32Float", 4, 1};
+    case Format::R32Uint: return {"R32Uint", 4, 1};
+  }
+  return {"?", 1, 1};
+}
+
+// Small floats share float16's 5-bit exponent with bias 15 (D3D11 §3.1.5, §3.1.6); they differ
+// in fraction bits and in having a sign bit.
+constexpr int kSmallExponentBias = 15;
+constexpr std::uint32_t kSmallExponentMax = 31;  // all ones: infinity or NaN
+
+// float32 -> small float per D3D11 §3.2.2 (a conversion to a lower-range float format): round
+// toward zero, so finite values too large become the largest finite value, never infinity;
+// infinity stays infinity, NaN stays NaN; values below the smallest normal become denormals
+// (or zero); the sign is kept where the format has one, and without one negative values clamp
+// to zero (D3D11 §3.1.6).
+std::uint32_t ToSmallFloat(float value, int fractionBits, bool hasSign) {
+  const auto bits = std::bit_cast<std::uint32_t>(value);
+  const std::uint32_t negative = bits >> 31;
+  const std::uint32_t exponent = (bits >> 23) & 0xffu;
+  const std::uint32_t fraction = bits & 0x7fffffu;
+  const std::uint32_t infinity = kSmallExponentMax << fractionBits;
+  if (exponent == 0xffu && fraction != 0) return infinity | (1u << (fractionBits - 1));  // quiet NaN
+  if (negative && !hasSign) return 0;
+  const std::uint32_t sign = hasSign ? negative << (5 + fractionBits) : 0u;
+  if (exponent == 0xffu) return sign | infinity;
+  const int biased = static_cast<int>(exponent) - 127 + kSmallExponentBias;
+  // infinity - 1 is exponent 30 with every fraction bit set: the largest finite value.
+  if (biased >= static_cast<int>(kSmallExponentMax)) return sign | (infinity - 1);
+  if (biased >= 1) {
+    return sign | (static_cast<std::uint32_t>(biased) << fractionBits) | (fraction >> (23 - fractionBits));
+  }
+  // A denormal counts units of 2^(-14 - fractionBits): the 24-bit significand shifted right by
+  // (23 - fractionBits) + (1 - biased) >= 24 - fractionBits, truncating. float32 zeros and
+  // denormals (below 2^-126) are far below the smallest small-float denormal.
+  const int shift = 23 - fractionBits + (1 - biased);
+  if (exponent == 0 || shift >= 32) return sign;
+  return sign | (((1u << 23) | fraction) >> shift);
+}
+
+// Small float -> float32: exact, every small float is a float32 normal (D3D11 §3.2.2, lower to
+// higher range).
+float FromSmallFloat(std::uint32_t bits, int fractionBits, bool hasSign) {
+  const bool negative = hasSign && ((bits >> (5 + fractionBits)) & 1u) != 0;
+  const std::uint32_t exponent = (bits >> fractionBits) & kSmallExponentMax;
+  const std::uint32_t fraction = bits & ((1u << fractionBits) - 1);
+  float magnitude;
+  if (exponent == kSmallExponentMax) {
+    magnitude = fraction != 0 ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
+  } else if (exponent == 0) {
+    magnitude = std::ldexp(static_cast<float>(fraction), 1 - kSmallExponentBias - fractionBits);
+  } else {
+    magnitude = std::ldexp(static_cast<float>((1u << fractionBits) | fraction),
+                           static_cast<int>(exponent) - kSmallExponentBias - fractionBits);
+  }
+  return negative ? -magnitude : magnitude;
+}
+
+constexpr int kHalfFraction = 10, kFloat11Fraction = 6, kFloat10Fraction = 5;
+
+// The sRGB curve of D3D11 §3.2.3.7 evaluated in double and rounded to float once, for each
+// code: the nearest float to the exact curve (D3D11 §3.2.3.2 asks conversions to be exact). A
+// table because a bilinear sRGB sample decodes 16 channels; pow per channel would dominate.
+const std::array<float, 256>& SrgbDecodeTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int k = 0; k < 256; ++k) {
+      const double c = k / 255.0;
+      t[static_cast<std::size_t>(k)] =
+          static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+    }
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+int BytesPerTexel(Format format) { return Info(format).bytes; }
+int Channels(Format format) { return Info(format).channels; }
+std::string_view FormatName(Format format) { return Info(format).name; }
+
+bool IsUnorm8(Format format) {
+  return format == Format::R8Unorm || format == Format::RG8Unorm || format == Format::RGBA8Unorm;
+}
+
+bool ViewCompatible(Format resource, Format view) {
+  const auto rgba8 = [](Format f) { return f == Format::RGBA8Unorm || f == Format::RGBA8Srgb; };
+  return resource == view || (rgba8(resource) && rgba8(view));
+}
+
+// D3D11 §3.2.3.6: NaN -> 0, clamp to [0, 1], scale by 2^8 - 1, add 0.5 and drop the fraction.
+// In double the product (24 x 8 significant bits) and the sum are exact, so this is the ideal
+// conversion; the spec allows 0.6 ULP, we take none.
+std::uint8_t FloatToUnorm8(float value) {
+  if (std::isnan(value)) return 0;
+  const double c = std::clamp(static_cast<double>(value), 0.0, 1.0);
+  return static_cast<std::uint8_t>(std::floor(c * 255.0 + 0.5));
+}
+
+// D3D11 §3.2.3.5: the code over 2^8 - 1, one correctly rounded float division.
+float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) / 255.0f; }
+
+// D3D11 §3.2.3.8: NaN -> 0, clamp, encode (linear below 0.0031308, else 1.055 c^(1/2.4) - 0.055)
+// in double, then the UNORM quantisation above.
+std::uint8_t FloatToSrgb8(float linear) {
+  if (std::isnan(linear)) return 0;
+  const double c = std::clamp(static_cast<double>(linear), 0.0, 1.0);
+  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return static_cast<std::uint8_t>(std::floor(encoded * 255.0 + 0.5));
+}
+
+float Srgb8ToFloat(std::uint8_t code) { return SrgbDecodeTable()[code]; }
+
+std::uint16_t FloatToHalf(float value) {
+  return static_cast<std::uint16_t>(ToSmallFloat(value, kHalfFraction, true));
+}
+float HalfToFloat(std::uint16_t bits) { return FromSmallFloat(bits, kHalfFraction, true); }
+std::uint16_t FloatToFloat11(float value) {
+  return static_cast<std::uint16_t>(ToSmallFloat(value, kFloat11Fraction, false));
+}
+float Float11ToFloat(std::uint16_t bits) { return FromSmallFloat(bits, kFloat11Fraction, false); }
+std::uint16_t FloatToFloat10(float value) {
+  return static_cast<std::uint16_t>(ToSmallFloat(value, kFloat10Fraction, false));
+}
+float Float10ToFloat(std::uint16_t bits) { return FromSmallFloat(bits, kFloat10Fraction, false); }
+
+float QuantizeChannel(Format format, int channel, float value) {
+  if (channel >= Channels(format)) return channel == 3 ? 1.0f : 0.0f;
+  switch (format) {
+    case Format::R8Unorm:
+    case Format::RG8Unorm:
+    case Format::RGBA8Unorm: return Unorm8ToFloat(FloatToUnorm8(value));
+    // The texture keeps the encoded code (as code / 255, what a UNORM view reads); alpha is
+    // linear in every sRGB format.
+    case Format::RGBA8Srgb: return Unorm8ToFloat(channel == 3 ? FloatToUnorm8(value) : FloatToSrgb8(value));
+    case Format::R11G11B10Float:
+      return channel == 2 ? Float10ToFloat(FloatToFloat10(value)) : Float11ToFloat(FloatToFloat11(value));
+    case Format::RG16Float:
+    case Format::RGBA16Float: return HalfToFloat(FloatToHalf(value));
+    case Format::R32Float:
+    case Format::R32Uint: return value;
+  }
+  return value;
+}
+
+float DecodeChannel(Format format, int channel, float stored) {
+  if (format != Format::RGBA8Srgb || channel == 3) return stored;
+  return Srgb8ToFloat(FloatToUnorm8(stored));
+}
+
+FixedPointCoord ToFixedPointCoord(float normalised, int size) {
+  // size * 256 <= 2^22 is exact in float; clamping the product to +-2^30 keeps the rounded
+  // value inside int (NaN converts to an unspecified in-range value, never undefined behaviour).
+  static_assert(raster::kMaxDimension * 256 < (1 << 24));
+  constexpr float kLimit = 1073741824.0f;
+  const float scaled = std::clamp(normalised * static_cast<float>(size * 256), -kLimit, kLimit);
+  const int s = static_cast<int>(std::lrint(scaled)) - 128;
+  return {s >> 8, s & 255};
+}
+
+}  // namespace sim

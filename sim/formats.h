@@ -1,0 +1,148 @@
+#pragma once
+// Texel formats: what a store into a texture keeps and what a shader reads back, by the data
+// conversion rules of the D3D11.3 functional spec §3.1.5-§3.2.3 ("D3D11 §" below). A texture
+// created with a Format stores every value already converted, as the float (or uint) a view in
+// that format reads: an 8-bit channel holds code / 255, whatever the view. The view's format
+// decides how a store encodes and how a load decodes, so one RGBA8 texture can be written or
+// read through a UNORM view in one dispatch and an sRGB view in another (D3D's typeless
+// resources, aa-facts §1.9: SMAA reads the same colour both ways).
+
+#include <cstdint>
+#include <string_view>
+#include <type_traits>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace sim {
+
+enum class Format : std::uint8_t {
+  R8Unorm,
+  RG8Unorm,
+  RGBA8Unorm,
+  RGBA8Srgb,       // RGB sRGB-encoded, alpha linear UNORM
+  R11G11B10Float,  // unsigned floats: 6-bit mantissa R and G, 5-bit B, 5-bit exponents
+  RG16Float,
+  RGBA16Float,
+  R32Float,
+  R32Uint,
+};
+
+int BytesPerTexel(Format format);
+int Channels(Format format);
+std::string_view FormatName(Format format);
+// Formats whose bilinear filter runs on the 8-bit codes in fixed point (see FixedPointCoord).
+// sRGB is not one: it is decoded, then filtered in float, as llvmpipe does (its 8-bit path
+// excludes sRGB: u_format.c util_format_fits_8unorm).
+bool IsUnorm8(Format format);
+// Whether a view of `view` format may read a resource created as `resource` (the typeless
+// family: RGBA8Unorm and RGBA8Srgb share their bytes).
+bool ViewCompatible(Format resource, Format view);
+
+// Scalar conversions (D3D11 §3.2.3.5-§3.2.3.8 and §3.2.2).
+std::uint8_t FloatToUnorm8(float value);
+float Unorm8ToFloat(std::uint8_t code);
+std::uint8_t FloatToSrgb8(float linear);
+float Srgb8ToFloat(std::uint8_t code);
+std::uint16_t FloatToHalf(float value);
+float HalfToFloat(std::uint16_t bits);
+std::uint16_t FloatToFloat11(float value);
+float Float11ToFloat(std::uint16_t bits);
+std::uint16_t FloatToFloat10(float value);
+float Float10ToFloat(std::uint16_t bits);
+
+// One channel of a texel in the host representation: what a store of `value` into channel
+// `channel` of `format` keeps, and what a view of `format` reads from what was kept. Channels
+// past the format's read as D3D's defaults (0, and 1 for alpha; D3D11.3 spec §19.1.3.3).
+float QuantizeChannel(Format format, int channel, float value);
+float DecodeChannel(Format format, int channel, float stored);
+
+// ---- Texel types a formatted texture can hold: float, glm float vectors, std::uint32_t ----
+
+template <typename T>
+inline constexpr int kTexelComponents = 1;
+template <glm::length_t N, typename S, glm::qualifier Q>
+inline constexpr int kTexelComponents<glm::vec<N, S, Q>> = N;
+
+template <typename T>
+struct TexelScalarOf {
+  using type = T;
+};
+template <glm::length_t N, typename S, glm::qualifier Q>
+struct TexelScalarOf<glm::vec<N, S, Q>> {
+  using type = S;
+};
+template <typename T>
+using TexelScalar = typename TexelScalarOf<T>::type;
+
+template <typename T>
+concept FloatTexel = std::is_same_v<TexelScalar<T>, float> && kTexelComponents<T> <= 4;
+template <typename T>
+concept FormattableTexel = FloatTexel<T> || std::is_same_v<T, std::uint32_t>;
+
+template <typename T>
+auto& TexelComponent(T& texel, int c) {
+  if constexpr (kTexelComponents<T> == 1 && std::is_arithmetic_v<T>) {
+    return texel;
+  } else {
+    return texel[static_cast<glm::length_t>(c)];
+  }
+}
+template <typename T>
+TexelScalar<T> TexelComponent(const T& texel, int c) {
+  if constexpr (kTexelComponents<T> == 1 && std::is_arithmetic_v<T>) {
+    return texel;
+  } else {
+    return texel[static_cast<glm::length_t>(c)];
+  }
+}
+
+// A host texel of type T holds every channel of the format, and integer formats need an
+// integer texel.
+template <FormattableTexel T>
+bool CanHold(Format format) {
+  if (format == Format::R32Uint) return std::is_same_v<T, std::uint32_t>;
+  return FloatTexel<T> && kTexelComponents<T> >= Channels(format);
+}
+
+// Whole texels: Quantize is what a store through a view of `format` leaves in the texture,
+// Decode what a load through such a view returns for a stored texel.
+template <FormattableTexel T>
+T Quantize(Format format, T value) {
+  if constexpr (FloatTexel<T>) {
+    for (int c = 0; c < kTexelComponents<T>; ++c) {
+      TexelComponent(value, c) = QuantizeChannel(format, c, TexelComponent(value, c));
+    }
+  }
+  return value;
+}
+template <FormattableTexel T>
+T Decode(Format format, T stored) {
+  if constexpr (FloatTexel<T>) {
+    if (format != Format::RGBA8Srgb) return stored;  // only sRGB reads differ from what is kept
+    for (int c = 0; c < kTexelComponents<T>; ++c) {
+      TexelComponent(stored, c) = DecodeChannel(format, c, TexelComponent(stored, c));
+    }
+  }
+  return stored;
+}
+
+// ---- Fixed-point bilinear filtering of 8-bit UNORM texels ----
+// As llvmpipe's AoS sampler (lp_bld_sample_aos.c lp_build_sample_image_linear): the normalised
+// coordinate times 256 * size, rounded to nearest (even) as one float32 product
+// (lp_bld_arit.c lp_build_iround: cvtps2dq), minus 128 (half a texel); the first texel is
+// that >> 8 (arithmetic), the weight its low 8 bits. D3D10+ asks for at least 8 bits of
+// sub-texel precision (D3D11.3 spec §7.18.16.1; aa-facts §1.9).
+struct FixedPointCoord {
+  int texel;   // left (or top) texel of the footprint, before offsets and addressing
+  int weight;  // 0..255, weight of the right (or bottom) texel in 1/256
+};
+FixedPointCoord ToFixedPointCoord(float normalised, int size);
+
+// lerp(w, a, b) = a + ((w * (b - a) + 128) >> 8) on 8-bit codes: llvmpipe's lp_build_lerp
+// with prescaled weights on its SSSE3/AVX2 path (pmulhrsw of w and (b - a) << 7 rounds this
+// way; without SSSE3 it truncates instead). The result lies between a and b.
+constexpr int LerpUnorm8(int weight, int a, int b) { return a + ((weight * (b - a) + 128) >> 8); }
+
+}  // namespace sim
