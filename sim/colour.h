@@ -11,17 +11,21 @@
 
 namespace sim {
 
-// IEC 61966-2-1 (sRGB) transfer function, exact curve, after clamping to [0, 1]. aa-facts §1.9:
-// an exact curve stays within 1/255 of llvmpipe's approximation.
-inline float EncodeSrgb(float linear) {
-  const float c = std::clamp(linear, 0.0f, 1.0f);
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+// IEC 61966-2-1 (sRGB) transfer functions on [0, 1], the one copy of the curve: float for shading
+// and metrics, double where the machine's formats need the exact value to quantise
+// (sim/formats.cpp). aa-facts §1.9: an exact curve stays within 1/255 of llvmpipe's approximation.
+template <typename T>
+T SrgbEncodeCurve(T linear) {
+  return linear <= T(0.0031308) ? T(12.92) * linear : T(1.055) * std::pow(linear, T(1) / T(2.4)) - T(0.055);
+}
+template <typename T>
+T SrgbDecodeCurve(T encoded) {
+  return encoded <= T(0.04045) ? encoded / T(12.92) : std::pow((encoded + T(0.055)) / T(1.055), T(2.4));
 }
 
-inline float DecodeSrgb(float encoded) {
-  const float c = std::clamp(encoded, 0.0f, 1.0f);
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
+// The curves after clamping to [0, 1].
+inline float EncodeSrgb(float linear) { return SrgbEncodeCurve(std::clamp(linear, 0.0f, 1.0f)); }
+inline float DecodeSrgb(float encoded) { return SrgbDecodeCurve(std::clamp(encoded, 0.0f, 1.0f)); }
 
 inline glm::vec3 EncodeSrgb(const glm::vec3& linear) {
   return {EncodeSrgb(linear.r), EncodeSrgb(linear.g), EncodeSrgb(linear.b)};

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "raster/limits.h"
+#include "sim/colour.h"
 
 namespace sim {
 
@@ -98,8 +99,7 @@ const std::array<float, 256>& SrgbDecodeTable() {
     std::array<float, 256> t{};
     for (int k = 0; k < 256; ++k) {
       const double c = k / 255.0;
-      t[static_cast<std::size_t>(k)] =
-          static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+      t[static_cast<std::size_t>(k)] = static_cast<float>(SrgbDecodeCurve(c));
     }
     return t;
   }();
@@ -138,7 +138,7 @@ float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) / 255.0
 std::uint8_t FloatToSrgb8(float linear) {
   if (std::isnan(linear)) return 0;
   const double c = std::clamp(static_cast<double>(linear), 0.0, 1.0);
-  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  const double encoded = SrgbEncodeCurve(c);
   return static_cast<std::uint8_t>(std::floor(encoded * 255.0 + 0.5));
 }
 
