@@ -2,6 +2,8 @@
 
 #include "cli/dispatch_output.h"
 
+#include "cli/number_format.h"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -93,48 +95,12 @@ bool AnyFrame(std::span<const study::DispatchRecord> records) {
 
 nlohmann::ordered_json Vector3(const glm::ivec3& v) { return {v.x, v.y, v.z}; }
 
-// The keys of a GPU file (sim/gpus/*.jsonc), so the block can be saved and read back with
-// --gpu; a test parses it with sim::ParseGpuConfig, which wants every key and no other, so this
-// table cannot silently fall behind GpuConfig.
-struct GpuIntField {
-  const char* name;
-  int sim::GpuConfig::*member;
-};
-constexpr GpuIntField kGpuIntFields[] = {
-    {"shaderEngines", &sim::GpuConfig::shaderEngines},
-    {"computeUnits", &sim::GpuConfig::computeUnits},
-    {"simdsPerCu", &sim::GpuConfig::simdsPerCu},
-    {"waveSlotsPerSimd", &sim::GpuConfig::waveSlotsPerSimd},
-    {"vgprsPerSimdLane", &sim::GpuConfig::vgprsPerSimdLane},
-    {"vgprGranule", &sim::GpuConfig::vgprGranule},
-    {"maxVgprsPerWave", &sim::GpuConfig::maxVgprsPerWave},
-    {"sgprsPerSimd", &sim::GpuConfig::sgprsPerSimd},
-    {"sgprGranule", &sim::GpuConfig::sgprGranule},
-    {"maxSgprsPerWave", &sim::GpuConfig::maxSgprsPerWave},
-    {"ldsBytesPerCu", &sim::GpuConfig::ldsBytesPerCu},
-    {"ldsGranuleBytes", &sim::GpuConfig::ldsGranuleBytes},
-    {"maxLdsBytesPerGroup", &sim::GpuConfig::maxLdsBytesPerGroup},
-    {"maxGroupsPerCu", &sim::GpuConfig::maxGroupsPerCu},
-    {"maxThreadsPerGroup", &sim::GpuConfig::maxThreadsPerGroup},
-};
-struct GpuDoubleField {
-  const char* name;
-  double sim::GpuConfig::*member;
-};
-constexpr GpuDoubleField kGpuDoubleFields[] = {
-    {"clockMhz", &sim::GpuConfig::clockMhz},
-    {"dramGBytesPerSecond", &sim::GpuConfig::dramGBytesPerSecond},
-    {"waveLaunchesPerClockPerSe", &sim::GpuConfig::waveLaunchesPerClockPerSe},
-    {"rasterPixelsPerClockPerSe", &sim::GpuConfig::rasterPixelsPerClockPerSe},
-    {"hiStencilTilesPerClockPerSe", &sim::GpuConfig::hiStencilTilesPerClockPerSe},
-    {"wavesPerSimdToHideLatency", &sim::GpuConfig::wavesPerSimdToHideLatency},
-    {"dispatchOverheadMicroseconds", &sim::GpuConfig::dispatchOverheadMicroseconds},
-};
-
+// Every key of a GPU file (sim/gpu_config.h's tables), so the block can be saved and read back
+// with --gpu.
 nlohmann::ordered_json GpuJson(const sim::GpuConfig& gpu) {
   nlohmann::ordered_json json = {{"name", gpu.name}, {"source", gpu.source}};
-  for (const GpuDoubleField& field : kGpuDoubleFields) json[field.name] = gpu.*field.member;
-  for (const GpuIntField& field : kGpuIntFields) json[field.name] = gpu.*field.member;
+  for (const sim::GpuDoubleKey& key : sim::kGpuDoubleKeys) json[key.key] = gpu.*key.member;
+  for (const sim::GpuIntKey& key : sim::kGpuIntKeys) json[key.key] = gpu.*key.member;
   return json;
 }
 
@@ -218,12 +184,6 @@ std::string FormatDouble(double value) {
   return std::string(text, result.ptr);
 }
 
-std::string FormatFixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
-
 std::vector<std::string> CsvHeader(bool withFrame) {
   std::vector<std::string> header;
   if (withFrame) header.emplace_back("frame");
@@ -281,10 +241,6 @@ std::size_t DisplayWidth(std::string_view text) {
   }));
 }
 
-std::string Percent(std::uint64_t part, std::uint64_t whole) {
-  return whole == 0 ? "-" : FormatFixed(100.0 * double(part) / double(whole), 1);
-}
-
 struct Column {
   const char* heading;
   bool numeric;  // right-aligned
@@ -309,10 +265,10 @@ std::vector<std::string> SummaryRow(const sim::DispatchReport& report, std::stri
           std::string(sim::DispatchKindName(report.kind)),
           std::to_string(lanes.waves),
           std::to_string(lanes.lanesLaunched),
-          Percent(lanes.lanesActive, lanes.lanesLaunched),
-          Percent(lanes.lanesHelper, lanes.lanesLaunched),
-          Percent(lanes.lanesDeadStencil, lanes.lanesLaunched),
-          Percent(lanes.lanesDeadEmpty, lanes.lanesLaunched),
+          FormatPercent(lanes.lanesActive, lanes.lanesLaunched),
+          FormatPercent(lanes.lanesHelper, lanes.lanesLaunched),
+          FormatPercent(lanes.lanesDeadStencil, lanes.lanesLaunched),
+          FormatPercent(lanes.lanesDeadEmpty, lanes.lanesLaunched),
           FormatFixed(double(report.DramBytes()) / 1e6, 2),
           std::to_string(report.occupancy.wavesPerSimd) + "/" +
               std::to_string(report.occupancy.maxWavesPerSimd) + " (" +
@@ -445,8 +401,8 @@ std::vector<std::vector<std::string>> DispatchComparisonRows(
       {"active lanes", std::to_string(a.lanes.lanesActive), std::to_string(b.lanes.lanesActive)},
       {"launched lanes", std::to_string(a.lanes.lanesLaunched),
        std::to_string(b.lanes.lanesLaunched)},
-      {"utilisation %", Percent(a.lanes.lanesActive, a.lanes.lanesLaunched),
-       Percent(b.lanes.lanesActive, b.lanes.lanesLaunched)},
+      {"utilisation %", FormatPercent(a.lanes.lanesActive, a.lanes.lanesLaunched),
+       FormatPercent(b.lanes.lanesActive, b.lanes.lanesLaunched)},
       {"DRAM bytes", std::to_string(a.DramBytes()), std::to_string(b.DramBytes())},
       {"estimated µs", FormatFixed(a.time.totalMicroseconds, 1),
        FormatFixed(b.time.totalMicroseconds, 1)},

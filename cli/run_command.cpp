@@ -10,6 +10,7 @@
 #include <oneapi/tbb/global_control.h>
 
 #include "cli/dispatch_output.h"
+#include "cli/number_format.h"
 #include "cli/output_dir.h"
 #include "study/study.h"
 #include "cli/study_report.h"
@@ -39,18 +40,11 @@ study::StudyObserver Observer(const RunCommandOptions& options, std::ostream& lo
   return observer;
 }
 
-std::string Fixed(double value, int decimals) {
-  if (!std::isfinite(value)) return std::isnan(value) ? "n/a" : "inf";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 void PrintQuality(std::ostream& out, const ScoredImage& image) {
   const passes::QualityScores& s = image.quality.scores;
   char line[160];
-  std::snprintf(line, sizeof line, "  %-22s %8s %8s %8s %10s\n", image.label.c_str(), Fixed(s.psnr, 2).c_str(),
-                Fixed(s.ssim, 4).c_str(), Fixed(s.flip, 4).c_str(), Fixed(s.edgeFlip, 4).c_str());
+  std::snprintf(line, sizeof line, "  %-22s %8s %8s %8s %10s\n", image.label.c_str(), FormatFixed(s.psnr, 2).c_str(),
+                FormatFixed(s.ssim, 4).c_str(), FormatFixed(s.flip, 4).c_str(), FormatFixed(s.edgeFlip, 4).c_str());
   out << line;
 }
 
@@ -84,7 +78,7 @@ void PrintSummary(std::ostream& out, const Study& study, const RunCommandOptions
   }
   for (const StudyPass& pass : study.passes) PrintQuality(out, pass.image);
   for (const StudyPass& pass : study.passes) PrintPass(out, study, pass);
-  out << "\nhost time  " << Fixed(study.hostSeconds, 1) << " s (" << study.threads << " threads)\n"
+  out << "\nhost time  " << FormatFixed(study.hostSeconds, 1) << " s (" << study.threads << " threads)\n"
       << "report: " << std::filesystem::absolute(dir / "report.html").string() << '\n';
 }
 

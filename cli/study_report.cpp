@@ -13,6 +13,7 @@
 #include "cli/eqaa_output.h"
 #include "cli/frame_output.h"
 #include "cli/image_io.h"
+#include "cli/number_format.h"
 #include "cli/report_images.h"
 #include "cli/text_io.h"
 #include "passes/registry.h"
@@ -37,17 +38,6 @@ constexpr const char* kEstimateNote =
     "measurements.";
 
 const std::string kImages = "images/";
-
-std::string Fixed(double value, int decimals) {
-  if (!std::isfinite(value)) return std::isnan(value) ? "n/a" : (value > 0 ? "inf" : "-inf");
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
-std::string Percent(std::uint64_t part, std::uint64_t whole) {
-  return whole == 0 ? "-" : Fixed(100.0 * double(part) / double(whole), 1);
-}
 
 // ---- Files ----------------------------------------------------------------------------------
 
@@ -182,8 +172,8 @@ std::string QualityCsv(const Study& study) {
   auto row = [&](const ScoredImage& image, const char* kind) {
     const passes::QualityScores& s = image.quality.scores;
     for (const std::string& field :
-         {CsvField(image.label), std::string(kind), Fixed(s.psnr, 4), Fixed(s.ssim, 6), Fixed(s.flip, 6),
-          Fixed(s.edgePsnr, 4), Fixed(s.edgeSsim, 6), Fixed(s.edgeFlip, 6), std::to_string(s.edgePixels)}) {
+         {CsvField(image.label), std::string(kind), FormatFixed(s.psnr, 4), FormatFixed(s.ssim, 6), FormatFixed(s.flip, 6),
+          FormatFixed(s.edgePsnr, 4), FormatFixed(s.edgeSsim, 6), FormatFixed(s.edgeFlip, 6), std::to_string(s.edgePixels)}) {
       csv += field;
       csv += ',';
     }
@@ -240,7 +230,7 @@ ReportSection RunSection(const Study& study, const RunCommandOptions& options) {
           " Post passes work on the " + (study.frames.empty() ? std::string("-") : study.frames.front().image.label) +
           " frame.",
       kEstimateNote,
-      "Host time " + Fixed(study.hostSeconds, 1) + " s on " + std::to_string(study.threads) +
+      "Host time " + FormatFixed(study.hostSeconds, 1) + " s on " + std::to_string(study.threads) +
           " threads (the simulator's own wall time, not a GPU time). Full-resolution images, EXR layers and every "
           "counter are in images/, report.json, counters.csv and quality.csv next to this file."};
   return section;
@@ -298,8 +288,8 @@ ReportSection QualitySection(const std::vector<Shown>& shown) {
   for (const Shown& image : shown) {
     if (image.scored == nullptr) continue;
     const passes::QualityScores& s = image.scored->quality.scores;
-    table.rows.push_back({image.label, Fixed(s.psnr, 2), Fixed(s.ssim, 4), Fixed(s.flip, 4), Fixed(s.edgePsnr, 2),
-                          Fixed(s.edgeSsim, 4), Fixed(s.edgeFlip, 4)});
+    table.rows.push_back({image.label, FormatFixed(s.psnr, 2), FormatFixed(s.ssim, 4), FormatFixed(s.flip, 4), FormatFixed(s.edgePsnr, 2),
+                          FormatFixed(s.edgeSsim, 4), FormatFixed(s.edgeFlip, 4)});
     chart.categories.push_back(image.label);
     chart.values[0].push_back(s.flip);
     chart.values[1].push_back(std::isfinite(s.edgeFlip) ? s.edgeFlip : 0.0);
@@ -340,9 +330,9 @@ ReportSection FramesSection(const Study& study) {
     const sim::DispatchReport& draw = study.dispatches[frame.drawDispatch].report;
     const sim::LaneCounters& l = draw.lanes;
     lanes.rows.push_back({frame.image.label, std::to_string(l.waves), std::to_string(l.lanesLaunched),
-                          Percent(l.lanesActive, l.lanesLaunched), Percent(l.lanesHelper, l.lanesLaunched),
-                          Percent(l.lanesDeadEmpty, l.lanesLaunched), Fixed(double(draw.DramBytes()) / 1e6, 2),
-                          Fixed(draw.time.totalMicroseconds, 1)});
+                          FormatPercent(l.lanesActive, l.lanesLaunched), FormatPercent(l.lanesHelper, l.lanesLaunched),
+                          FormatPercent(l.lanesDeadEmpty, l.lanesLaunched), FormatFixed(double(draw.DramBytes()) / 1e6, 2),
+                          FormatFixed(draw.time.totalMicroseconds, 1)});
     fragments.header.push_back(frame.image.label);
     std::size_t row = 0;
     frame.fragments.ForEach([&](const char* name, std::uint64_t value) {

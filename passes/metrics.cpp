@@ -589,8 +589,4 @@ QualityResult ScoreWithMaps(const ImageView& test, const ImageView& reference, P
   return result;
 }
 
-QualityScores Score(const ImageView& test, const ImageView& reference, PixelMask edgeMask) {
-  return ScoreWithMaps(test, reference, edgeMask).scores;
-}
-
 }  // namespace passes

@@ -85,6 +85,5 @@ struct QualityResult {
 // covered; the caller supplies it). The edge mask is required and must select at least one pixel.
 QualityResult ScoreWithMaps(const ImageView& test, const ImageView& reference, PixelMask edgeMask,
                             const FlipSettings& settings = {});
-QualityScores Score(const ImageView& test, const ImageView& reference, PixelMask edgeMask);
 
 }  // namespace passes

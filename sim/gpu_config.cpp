@@ -26,58 +26,14 @@ constexpr BuiltinGpu kBuiltinGpus[] = {
 #include "sim/builtin_gpus.inc"
 };
 
-// The keys of a GPU file besides "name", in file order; one table drives the required-key,
-// unknown-key, type and range checks so they cannot drift apart. The ranges are plausibility
-// bounds, wide enough for every GCN and later part (the GFX7 values of sim/gpus/ sit well
-// inside them) and narrow enough that the occupancy and timing arithmetic cannot overflow and a
-// typo (VGPRs 4, a clock of 1e400) is caught where it is read, naming file and key.
-struct IntKey {
-  const char* key;
-  int GpuConfig::*member;
-  int min;
-  int max;
-};
-struct DoubleKey {
-  const char* key;
-  double GpuConfig::*member;
-  double min;
-  double max;
-};
-
-constexpr IntKey kIntKeys[] = {
-    {"shaderEngines", &GpuConfig::shaderEngines, 1, 16},
-    {"computeUnits", &GpuConfig::computeUnits, 1, 512},
-    {"simdsPerCu", &GpuConfig::simdsPerCu, 1, 8},
-    {"waveSlotsPerSimd", &GpuConfig::waveSlotsPerSimd, 1, 32},
-    {"vgprsPerSimdLane", &GpuConfig::vgprsPerSimdLane, 64, 2048},
-    {"vgprGranule", &GpuConfig::vgprGranule, 1, 64},
-    {"maxVgprsPerWave", &GpuConfig::maxVgprsPerWave, 64, 2048},
-    {"sgprsPerSimd", &GpuConfig::sgprsPerSimd, 64, 8192},
-    {"sgprGranule", &GpuConfig::sgprGranule, 1, 64},
-    {"maxSgprsPerWave", &GpuConfig::maxSgprsPerWave, 16, 1024},
-    {"ldsBytesPerCu", &GpuConfig::ldsBytesPerCu, 1024, 1 << 20},
-    {"ldsGranuleBytes", &GpuConfig::ldsGranuleBytes, 4, 1 << 16},
-    {"maxLdsBytesPerGroup", &GpuConfig::maxLdsBytesPerGroup, 1024, 1 << 20},
-    {"maxGroupsPerCu", &GpuConfig::maxGroupsPerCu, 1, 64},
-    {"maxThreadsPerGroup", &GpuConfig::maxThreadsPerGroup, 64, 4096},
-};
-
-constexpr DoubleKey kDoubleKeys[] = {
-    {"clockMhz", &GpuConfig::clockMhz, 1.0, 1e4},
-    {"dramGBytesPerSecond", &GpuConfig::dramGBytesPerSecond, 1.0, 1e5},
-    {"waveLaunchesPerClockPerSe", &GpuConfig::waveLaunchesPerClockPerSe, 1e-3, 64.0},
-    {"rasterPixelsPerClockPerSe", &GpuConfig::rasterPixelsPerClockPerSe, 1e-3, 256.0},
-    {"hiStencilTilesPerClockPerSe", &GpuConfig::hiStencilTilesPerClockPerSe, 1e-3, 64.0},
-    {"wavesPerSimdToHideLatency", &GpuConfig::wavesPerSimdToHideLatency, 1e-3, 64.0},
-    {"dispatchOverheadMicroseconds", &GpuConfig::dispatchOverheadMicroseconds, 1e-3, 1e6},
-};
-
+// One table (sim/gpu_config.h) drives the required-key, unknown-key, type and range checks so they
+// cannot drift apart.
 constexpr const char* kNameKey = "name";
 
 bool IsKnownKey(const std::string& key) {
   if (key == kNameKey) return true;
   const auto sameKey = [&](const auto& entry) { return key == entry.key; };
-  return std::ranges::any_of(kIntKeys, sameKey) || std::ranges::any_of(kDoubleKeys, sameKey);
+  return std::ranges::any_of(kGpuIntKeys, sameKey) || std::ranges::any_of(kGpuDoubleKeys, sameKey);
 }
 
 std::string BuiltinList() {
@@ -101,8 +57,8 @@ class GpuFileParser {
     GpuConfig config;
     config.source = source_;
     config.name = Name(root);
-    for (const IntKey& entry : kIntKeys) config.*entry.member = IntInRange(root, entry);
-    for (const DoubleKey& entry : kDoubleKeys) config.*entry.member = DoubleInRange(root, entry);
+    for (const GpuIntKey& entry : kGpuIntKeys) config.*entry.member = IntInRange(root, entry);
+    for (const GpuDoubleKey& entry : kGpuDoubleKeys) config.*entry.member = DoubleInRange(root, entry);
     CheckConsistency(config);
     return config;
   }
@@ -139,7 +95,7 @@ class GpuFileParser {
     Fail(std::string("key '") + key + "' must be " + range + ", found " + raster::JsonExcerpt(value));
   }
 
-  int IntInRange(const nlohmann::json& root, const IntKey& entry) const {
+  int IntInRange(const nlohmann::json& root, const GpuIntKey& entry) const {
     const nlohmann::json& value = Required(root, entry.key);
     const std::string range = "an integer in [" + std::to_string(entry.min) + ", " + std::to_string(entry.max) + "]";
     if (!value.is_number_integer()) FailRange(entry.key, value, range);
@@ -152,7 +108,7 @@ class GpuFileParser {
     return static_cast<int>(value.get<std::int64_t>());
   }
 
-  double DoubleInRange(const nlohmann::json& root, const DoubleKey& entry) const {
+  double DoubleInRange(const nlohmann::json& root, const GpuDoubleKey& entry) const {
     const nlohmann::json& value = Required(root, entry.key);
     std::ostringstream range;
     range << "a number in [" << entry.min << ", " << entry.max << "]";

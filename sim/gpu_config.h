@@ -51,6 +51,53 @@ struct GpuConfig {
   double dispatchOverheadMicroseconds = 1;
 };
 
+// Every key of a GPU file but "name", with its legal range: the one list the parser checks keys
+// and ranges against and the writers (cli/dispatch_output.cpp) echo a configuration from. The
+// ranges are plausibility bounds, wide enough for every GCN and later part (the GFX7 values of
+// sim/gpus/ sit well inside them) and narrow enough that the occupancy and timing arithmetic
+// cannot overflow and a typo (VGPRs 4, a clock of 1e400) is caught where it is read, naming file
+// and key.
+struct GpuIntKey {
+  const char* key;
+  int GpuConfig::*member;
+  int min;
+  int max;
+};
+struct GpuDoubleKey {
+  const char* key;
+  double GpuConfig::*member;
+  double min;
+  double max;
+};
+
+inline constexpr GpuIntKey kGpuIntKeys[] = {
+    {"shaderEngines", &GpuConfig::shaderEngines, 1, 16},
+    {"computeUnits", &GpuConfig::computeUnits, 1, 512},
+    {"simdsPerCu", &GpuConfig::simdsPerCu, 1, 8},
+    {"waveSlotsPerSimd", &GpuConfig::waveSlotsPerSimd, 1, 32},
+    {"vgprsPerSimdLane", &GpuConfig::vgprsPerSimdLane, 64, 2048},
+    {"vgprGranule", &GpuConfig::vgprGranule, 1, 64},
+    {"maxVgprsPerWave", &GpuConfig::maxVgprsPerWave, 64, 2048},
+    {"sgprsPerSimd", &GpuConfig::sgprsPerSimd, 64, 8192},
+    {"sgprGranule", &GpuConfig::sgprGranule, 1, 64},
+    {"maxSgprsPerWave", &GpuConfig::maxSgprsPerWave, 16, 1024},
+    {"ldsBytesPerCu", &GpuConfig::ldsBytesPerCu, 1024, 1 << 20},
+    {"ldsGranuleBytes", &GpuConfig::ldsGranuleBytes, 4, 1 << 16},
+    {"maxLdsBytesPerGroup", &GpuConfig::maxLdsBytesPerGroup, 1024, 1 << 20},
+    {"maxGroupsPerCu", &GpuConfig::maxGroupsPerCu, 1, 64},
+    {"maxThreadsPerGroup", &GpuConfig::maxThreadsPerGroup, 64, 4096},
+};
+
+inline constexpr GpuDoubleKey kGpuDoubleKeys[] = {
+    {"clockMhz", &GpuConfig::clockMhz, 1.0, 1e4},
+    {"dramGBytesPerSecond", &GpuConfig::dramGBytesPerSecond, 1.0, 1e5},
+    {"waveLaunchesPerClockPerSe", &GpuConfig::waveLaunchesPerClockPerSe, 1e-3, 64.0},
+    {"rasterPixelsPerClockPerSe", &GpuConfig::rasterPixelsPerClockPerSe, 1e-3, 256.0},
+    {"hiStencilTilesPerClockPerSe", &GpuConfig::hiStencilTilesPerClockPerSe, 1e-3, 64.0},
+    {"wavesPerSimdToHideLatency", &GpuConfig::wavesPerSimdToHideLatency, 1e-3, 64.0},
+    {"dispatchOverheadMicroseconds", &GpuConfig::dispatchOverheadMicroseconds, 1e-3, 1e6},
+};
+
 // Parses a GPU file's text; `source` names it in errors and becomes GpuConfig::source. A missing
 // or unknown key, a wrong type, a non-positive value or an inconsistent pair of values (a granule
 // that does not divide its pool, a per-wave or per-group maximum above what the CU holds) throws.

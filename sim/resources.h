@@ -158,7 +158,6 @@ class AppendBuffer {
   std::size_t Capacity() const { return items_.Size(); }
   std::uint32_t Count() const { return counter_.At(0); }
   void ResetCounter() { counter_.At(0) = 0; }
-  std::span<const T> Items() const { return items_.Elements().first(Count()); }
 
   Buffer<T>& Storage() { return items_; }
   const Buffer<T>& Storage() const { return items_; }

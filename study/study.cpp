@@ -67,7 +67,7 @@ StudyGroundTruth RenderGroundTruth(const StudyInputs& inputs, const ExperimentCo
 }
 
 // Without edge pixels the edge scores have nothing to average: NaN, shown as "n/a" and null.
-passes::QualityResult Score(const sim::Texture2D<glm::vec4>& image, const StudyGroundTruth& groundTruth) {
+passes::QualityResult ScoreAgainstGroundTruth(const sim::Texture2D<glm::vec4>& image, const StudyGroundTruth& groundTruth) {
   const passes::ImageView test = passes::ViewOf(image), reference = passes::ViewOf(groundTruth.colour);
   if (passes::CountSelected(groundTruth.edgeMask) > 0) {
     return passes::ScoreWithMaps(test, reference, groundTruth.edgeMask);
@@ -144,11 +144,11 @@ class StudyRunner {
     frame.image.colour = pipeline.Colour();
     frame.fragments = pipeline.Fragments();
     frame.image.quality =
-        Step(observer_, "metrics " + label, [&] { return Score(frame.image.colour, study_.groundTruth); });
+        Step(observer_, "metrics " + label, [&] { return ScoreAgainstGroundTruth(frame.image.colour, study_.groundTruth); });
     if (frame.mode.fragments < frame.mode.coverageSamples) {
       ScoredImage fetch{label + " fetch", frame.image.folder + "/fetch", FetchResolve(pipeline.Eqaa()), {}};
       fetch.quality =
-          Step(observer_, "metrics " + fetch.label, [&] { return Score(fetch.colour, study_.groundTruth); });
+          Step(observer_, "metrics " + fetch.label, [&] { return ScoreAgainstGroundTruth(fetch.colour, study_.groundTruth); });
       frame.fetchResolve = std::move(fetch);
     }
     if (observer_.frameDone) observer_.frameDone(frame, pipeline);
@@ -190,7 +190,7 @@ class StudyRunner {
     result.workItems = first->workItems;
     result.image.colour = std::move(first->colour);
     result.image.quality =
-        Step(observer_, "metrics " + name, [&] { return Score(result.image.colour, study_.groundTruth); });
+        Step(observer_, "metrics " + name, [&] { return ScoreAgainstGroundTruth(result.image.colour, study_.groundTruth); });
     study_.passes.push_back(std::move(result));
   }
 

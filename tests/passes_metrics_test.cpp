@@ -165,7 +165,6 @@ TEST(PassesMetrics, AShiftedEdgeConcentratesTheErrorAtTheEdge) {
   EXPECT_LT(r.scores.edgeSsim, r.scores.ssim);
   EXPECT_GT(r.scores.edgeFlip, r.scores.flip);
   EXPECT_EQ(r.scores.edgePixels, 3u * static_cast<std::uint64_t>(h));
-  EXPECT_EQ(Score(test.View(), reference.View(), edges).edgeFlip, r.scores.edgeFlip);
 }
 
 TEST(PassesMetrics, FlipGrowsWithTheColourDifferenceOfFlatPatches) {
@@ -351,7 +350,7 @@ TEST(PassesMetrics, AMaskThatSelectsNothingIsAnError) {
   const std::vector<float> none(16 * 8, 0.0f);
   for (const auto& call : std::vector<std::function<void()>>{
            [&] { (void)Psnr(a.View(), b.View(), none); },
-           [&] { (void)Score(a.View(), b.View(), none); },
+           [&] { (void)ScoreWithMaps(a.View(), b.View(), none); },
            [&] { (void)MaskedMean(Ssim(a.View(), b.View()).map, none); }}) {
     try {
       call();
@@ -367,7 +366,7 @@ TEST(PassesMetrics, MismatchedSizesAreOneLineErrors) {
   const std::vector<float> mask(16 * 8, 1.0f);
   for (const auto& call : std::vector<std::function<void()>>{
            [&] { (void)Psnr(a.View(), b.View()); }, [&] { (void)Ssim(a.View(), b.View()); },
-           [&] { (void)Flip(a.View(), b.View()); }, [&] { (void)Score(a.View(), b.View(), mask); }}) {
+           [&] { (void)Flip(a.View(), b.View()); }, [&] { (void)ScoreWithMaps(a.View(), b.View(), mask); }}) {
     try {
       call();
       ADD_FAILURE() << "expected std::invalid_argument";
@@ -379,7 +378,7 @@ TEST(PassesMetrics, MismatchedSizesAreOneLineErrors) {
     }
   }
   const std::vector<float> shortMask(10, 1.0f);
-  EXPECT_THROW((void)Score(a.View(), a.View(), shortMask), std::invalid_argument);
+  EXPECT_THROW((void)ScoreWithMaps(a.View(), a.View(), shortMask), std::invalid_argument);
   const ImageView lying{a.pixels, 15, 8};
   EXPECT_THROW((void)Flip(lying, lying), std::invalid_argument);
 }
