@@ -86,6 +86,8 @@ constexpr TimeField kTimeFields[] = {
     {"raster", &sim::TimeEstimate::rasterMicroseconds},
     {"overhead", &sim::TimeEstimate::overheadMicroseconds},
     {"total", &sim::TimeEstimate::totalMicroseconds},
+    {"total_valu_halved", &sim::TimeEstimate::totalValuHalvedMicroseconds},
+    {"total_valu_doubled", &sim::TimeEstimate::totalValuDoubledMicroseconds},
 };
 constexpr const char* kBound = "bound";
 
@@ -108,6 +110,7 @@ nlohmann::ordered_json KernelJson(const sim::KernelInfo& kernel) {
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
   for (const KernelField& field : kKernelFields) json[field.name] = kernel.*field.member;
   json[kValuEstimate] = kernel.valuInstructionsPerWave;
+  json["valu_estimate_source"] = kernel.source;
   return json;
 }
 
@@ -308,6 +311,11 @@ const sim::DispatchReport& FindDispatch(std::span<const study::DispatchRecord> p
   return found->report;
 }
 
+// How far the estimate moves when the kernel author's VALU count is off by 2x either way.
+std::string ValuRange(const sim::TimeEstimate& time) {
+  return FormatFixed(time.totalValuHalvedMicroseconds, 1) + " .. " + FormatFixed(time.totalValuDoubledMicroseconds, 1);
+}
+
 double EstimatedMicroseconds(std::span<const study::DispatchRecord> pass) {
   double total = 0.0;
   for (const study::DispatchRecord& record : pass) total += record.report.time.totalMicroseconds;
@@ -406,6 +414,7 @@ std::vector<std::vector<std::string>> DispatchComparisonRows(
       {"DRAM bytes", std::to_string(a.DramBytes()), std::to_string(b.DramBytes())},
       {"estimated µs", FormatFixed(a.time.totalMicroseconds, 1),
        FormatFixed(b.time.totalMicroseconds, 1)},
+      {"estimated µs, VALU count x0.5 .. x2", ValuRange(a.time), ValuRange(b.time)},
       {"estimated µs, whole pass", FormatFixed(EstimatedMicroseconds(leftPass), 1),
        FormatFixed(EstimatedMicroseconds(rightPass), 1)},
   };

@@ -5,10 +5,10 @@
 namespace passes {
 namespace {
 
-// Hand count of the argument kernel: one buffer load, an add and a shift for ceil(n / 64), three
-// stores (the MiniEngine FXAA argument shader has the same shape, aa-facts §3).
-constexpr sim::KernelInfo kQueueArgumentsKernel{.vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0,
-                                                .valuInstructionsPerWave = 8};
+constexpr sim::KernelInfo kQueueArgumentsKernel{
+    .vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 8,
+    .source = "hand count: one load, an add and a shift for ceil(n / 64), three stores (the MiniEngine FXAA "
+              "argument shader has the same shape, aa-facts §3)"};
 
 }  // namespace
 

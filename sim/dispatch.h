@@ -42,6 +42,9 @@ struct KernelInfo {
   int ldsBytesPerGroup = 0;
   // The author's estimate of VALU instructions one wave executes: the timing model's ALU input.
   double valuInstructionsPerWave = 0.0;
+  // Where that estimate comes from (a hand count of the reference shader, and of what), emitted
+  // next to it; the report also shows the estimate with it halved and doubled.
+  std::string_view source = {};
 };
 
 class Dispatch {

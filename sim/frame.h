@@ -55,8 +55,11 @@ struct FrameSettings {
 // bilinear, repeat-wrapped texture sample at the centroid, Lambert plus ambient.
 // Its declared resources and instruction estimate (an estimate for the timing
 // model, not a compiled shader): interpolation, normalise, one N.L and the G-buffer exports.
-inline constexpr KernelInfo kMaterialKernel{.vgprs = 24, .sgprs = 24, .ldsBytesPerGroup = 0,
-                                            .valuInstructionsPerWave = 64};
+inline constexpr KernelInfo kMaterialKernel{
+    .vgprs = 24, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 64,
+    .source = "hand count of sim/frame.cpp's material kernel: 3 barycentric interpolations of normal, colour "
+              "and texcoord (~18), normalise (~8), N.L and the Lambert mix (~10), a bilinear sample's "
+              "address and weights (~16), exports (~12)"};
 
 class FramePipeline {
  public:

@@ -247,6 +247,11 @@ void Machine::Finish(Dispatch& dispatch, DispatchReport report,
   work.hiStencilTiles = report.lanes.tilesHiStencilCulled;
   work.occupancy = report.occupancy;
   report.time = EstimateTime(gpu_, work);
+  WorkEstimate scaled = work;
+  scaled.valuInstructionsPerWave = work.valuInstructionsPerWave * 0.5;
+  report.time.totalValuHalvedMicroseconds = EstimateTime(gpu_, scaled).totalMicroseconds;
+  scaled.valuInstructionsPerWave = work.valuInstructionsPerWave * 2.0;
+  report.time.totalValuDoubledMicroseconds = EstimateTime(gpu_, scaled).totalMicroseconds;
   reports_.push_back(std::move(report));
 }
 

@@ -46,6 +46,10 @@ struct TimeEstimate {
   double overheadMicroseconds = 0;
   double totalMicroseconds = 0;
   std::string_view bound = "overhead";
+  // The total with the declared VALU count halved and doubled: how much of the estimate rests on
+  // the kernel author's instruction count (KernelInfo::source says where it comes from).
+  double totalValuHalvedMicroseconds = 0;
+  double totalValuDoubledMicroseconds = 0;
 };
 
 // Throws std::invalid_argument (one line) for a negative or non-finite VALU count, or for waves

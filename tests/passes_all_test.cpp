@@ -72,6 +72,17 @@ TEST_P(EveryPass, DeclaresWhatTheStudyNeeds) {
   }
 }
 
+// The timing estimate's instruction counts say where they come from (KernelInfo::source).
+TEST_P(EveryPass, EveryKernelCitesTheSourceOfItsInstructionCount) {
+  for (const Strategy strategy : Info().strategies) {
+    for (const sim::DispatchReport& report : RunPass(Pass(), strategy, 2).reports) {
+      EXPECT_FALSE(report.kernel.source.empty()) << report.name << " [" << StrategyName(strategy) << "]";
+      EXPECT_LE(report.time.totalValuHalvedMicroseconds, report.time.totalMicroseconds) << report.name;
+      EXPECT_GE(report.time.totalValuDoubledMicroseconds, report.time.totalMicroseconds) << report.name;
+    }
+  }
+}
+
 TEST_P(EveryPass, StrategiesGiveBitIdenticalOutputs) {
   const std::vector<Strategy>& strategies = Info().strategies;
   const PassRun first = RunPass(Pass(), strategies.front(), 2);

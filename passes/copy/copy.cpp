@@ -10,14 +10,15 @@ namespace {
 constexpr std::string_view kMarkDispatch = "copy/mark";
 constexpr std::string_view kCopyDispatch = "copy/copy";
 
-// Hand counts: the mark is a constant export (a compare and the stencil or append); the copy is
-// one load and one store with the address arithmetic.
 constexpr WorkSetKernels kKernels{
     .detectDispatch = kMarkDispatch,
     .consumeDispatch = kCopyDispatch,
-    .detectPixel = {.vgprs = 4, .sgprs = 8, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 4},
-    .detectCompute = {.vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 8},
-    .consume = {.vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 8},
+    .detectPixel = {.vgprs = 4, .sgprs = 8, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 4,
+                    .source = "hand count: a constant stencil export"},
+    .detectCompute = {.vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 8,
+                      .source = "hand count: bounds compare, pack x | y << 16, append address"},
+    .consume = {.vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 8,
+                .source = "hand count: item unpack and address arithmetic around one load and one store"},
 };
 
 class CopyPass final : public Pass {

@@ -16,16 +16,20 @@ constexpr std::string_view kBlendDispatch = "demo/blend";
 constexpr int kGroupSide = 8;
 constexpr int kTileSide = kGroupSide + 2;  // one-pixel apron, as the MiniEngine FXAA luma cache (aa-facts §3)
 
-// The demo has no reference shader to count: these are the author's estimates of VALU
-// instructions per wave (5 sRGB encodes and lumas, 4 differences, compares and stores; the
-// compute form adds the tile fill; the blend is 9 loads and 8 vector adds).
+// The demo has no reference shader to count: the estimates are hand counts of this file's kernels.
 constexpr WorkSetKernels kKernels{
     .detectDispatch = kDetectDispatch,
     .consumeDispatch = kBlendDispatch,
-    .detectPixel = {.vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 40},
+    .detectPixel = {.vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 40,
+                    .source = "hand count of passes/demo: 5 luma dot products (15), 4 abs differences and a "
+                              "max tree (11), the compare, 2 stores and the stencil export (~14)"},
     .detectCompute = {.vgprs = 16, .sgprs = 24, .ldsBytesPerGroup = kTileSide * kTileSide * 4,
-                      .valuInstructionsPerWave = 48},
-    .consume = {.vgprs = 20, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 48},
+                      .valuInstructionsPerWave = 48,
+                      .source = "hand count of passes/demo: the pixel form's 40 minus 4 lumas read from LDS, "
+                                "plus the 10x10 tile fill (2 lumas per thread, addressing) and the append"},
+    .consume = {.vgprs = 20, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 48,
+                .source = "hand count of passes/demo: 9 clamped addresses (~12), 8 vec4 adds (32), the divide "
+                          "as 4 multiplies"},
 };
 
 // aa-facts §1.3: SMAA's luma edge detection weights gamma-encoded colour by Rec. 709.
