@@ -17,14 +17,14 @@ std::optional<Strategy> StrategyByName(std::string_view name) {
   return *found;
 }
 
-FrameInputs FrameInputsOf(const sim::FramePipeline& frame, int frameIndex) {
+FrameInputs FrameInputsOf(const sim::FramePipeline& frame) {
   return {.colour = &frame.Colour(),
           .depth = &frame.Depth(),
           .normal = &frame.Normal(),
           .objectId = &frame.ObjectId(),
           .velocity = &frame.Velocity(),
           .eqaa = &frame.Eqaa(),
-          .frameIndex = frameIndex,
+          .frameIndex = frame.FrameIndex(),
           .jitter = glm::vec2(0.0f)};
 }
 

@@ -47,8 +47,8 @@ struct FrameInputs {
   int Height() const { return colour->Height(); }
 };
 
-// Every target of a rendered frame.
-FrameInputs FrameInputsOf(const sim::FramePipeline& frame, int frameIndex = 0);
+// Every target of a rendered frame, and its index in its sequence.
+FrameInputs FrameInputsOf(const sim::FramePipeline& frame);
 
 enum class FrameInput : std::uint8_t { Colour, Depth, Normal, ObjectId, Velocity, Eqaa };
 

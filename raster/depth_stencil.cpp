@@ -84,6 +84,11 @@ DepthStencilSurface::DepthStencilSurface(const DepthSurfaceConfig& config, Sampl
   planeIndex_.resize(pixels * config_.coverageSamples);
   anchorDepth_.resize(pixels * config_.depthSamples);
   stencil_.resize(pixels);
+  FindNearestAnchors();
+  Clear(config_.clearDepth, config_.clearStencil);
+}
+
+void DepthStencilSurface::FindNearestAnchors() {
   for (int p = 0; p < kQuadPixels; ++p) {
     for (int s = 0; s < config_.coverageSamples; ++s) {
       int best = 0;
@@ -94,6 +99,12 @@ DepthStencilSurface::DepthStencilSurface(const DepthSurfaceConfig& config, Sampl
       nearestAnchor_[p][s] = static_cast<std::uint8_t>(s < config_.depthSamples ? s : best);
     }
   }
+}
+
+void DepthStencilSurface::SetPattern(SamplePattern pattern) {
+  ValidateConfig(config_, pattern);
+  pattern_ = std::move(pattern);
+  FindNearestAnchors();
   Clear(config_.clearDepth, config_.clearStencil);
 }
 

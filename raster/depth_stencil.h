@@ -127,6 +127,9 @@ class DepthStencilSurface {
   const ZTile& Tile(int tx, int ty) const { return tiles_[TileIndex(tx, ty)]; }
 
   void Clear(float depth, std::uint8_t stencil);
+  // Moves the samples (a per-frame jitter or pattern schedule) without reallocating: validated as
+  // at construction, then the surface is cleared, since stored depths belong to the old positions.
+  void SetPattern(SamplePattern pattern);
   void SetHiStencilPretests(const std::array<HiStencilPretest, kHiStencilPretests>& pretests);
 
   // The depth the DB tests coverage sample `sample` of pixel (x, y) against.
@@ -153,6 +156,7 @@ class DepthStencilSurface {
  private:
   int PixelIndex(int x, int y) const { return y * config_.width + x; }
   int TileIndex(int tx, int ty) const { return ty * tilesX_ + tx; }
+  void FindNearestAnchors();
   float StoredDepth(const ZTile& tile, int pixel, int quadPixel, int x, int y, int sample) const;
   int PlaneSlot(int tx, int ty, const ZPlane& plane, RasterCounters& counters);
   bool WriteStencil(std::uint8_t& value, StencilOp op, const StencilState& stencil);

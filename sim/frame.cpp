@@ -113,8 +113,16 @@ void FramePipeline::ClearTargets() {
   velocity_.Fill(glm::vec2(0.0f));
 }
 
-DispatchReport FramePipeline::Render(const FrameGeometry& geometry) {
+DispatchReport FramePipeline::Render(const FrameGeometry& geometry, const FrameParams& params) {
   Validate(geometry);
+  if (params.pattern != nullptr) {
+    FrameSettings next = settings_;
+    next.pattern = *params.pattern;
+    DepthConfig(next);  // the sample count must match the surfaces
+    depth_.SetPattern(next.pattern);
+    settings_ = std::move(next);
+  }
+  frameIndex_ = params.frameIndex;
   ClearTargets();
   Dispatch dispatch("frame/material", kMaterialKernel);
   const RwTextureView<float> depthOut = dispatch.ReadWrite(depthTarget_);

@@ -61,6 +61,14 @@ inline constexpr KernelInfo kMaterialKernel{
               "and texcoord (~18), normalise (~8), N.L and the Lambert mix (~10), a bilinear sample's "
               "address and weights (~16), exports (~12)"};
 
+// What may change from one frame to the next without reallocating the pipeline's surfaces: the
+// sample pattern (a jitter or pattern schedule: halton:K offsets, alternating T2x patterns) and
+// the frame's index in its sequence.
+struct FrameParams {
+  const raster::SamplePattern* pattern = nullptr;  // nullptr keeps the current one; S must not change
+  int frameIndex = 0;
+};
+
 class FramePipeline {
  public:
   // Throws std::invalid_argument for an impossible EQAA mode, a pattern whose sample count is
@@ -68,10 +76,12 @@ class FramePipeline {
   FramePipeline(Machine& machine, FrameSettings settings);
 
   // Clears the surfaces, draws the geometry with the material kernel and resolves colour.
-  // Returns the draw's report. Throws std::invalid_argument naming the bad input.
-  DispatchReport Render(const FrameGeometry& geometry);
+  // Returns the draw's report. Throws std::invalid_argument naming the bad input (geometry, or a
+  // pattern whose sample count is not the surface's S); the surfaces are reused across frames.
+  DispatchReport Render(const FrameGeometry& geometry, const FrameParams& params = {});
 
   const FrameSettings& Settings() const { return settings_; }
+  int FrameIndex() const { return frameIndex_; }
   fmask::EqaaSurface& Eqaa() { return eqaa_; }
   const fmask::EqaaSurface& Eqaa() const { return eqaa_; }
   raster::DepthStencilSurface& DepthSurface() { return depth_; }
@@ -99,6 +109,7 @@ class FramePipeline {
   Texture2D<std::uint32_t> objectId_;
   Texture2D<glm::vec2> velocity_;
   fmask::FragmentCounters fragments_;
+  int frameIndex_ = 0;
 };
 
 inline constexpr std::uint32_t kNoObject = 0xFFFFFFFFu;

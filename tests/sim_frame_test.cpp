@@ -299,3 +299,50 @@ TEST(SimFrame, CountersAndImagesDoNotDependOnTheThreadCount) {
 
 }  // namespace
 }  // namespace sim
+
+namespace sim {
+namespace {
+
+// A sequence moves its samples from frame to frame (a jitter schedule): the pipeline keeps its
+// surfaces and renders what a pipeline built for the new pattern renders, bit for bit.
+TEST(SimFrame, APerFramePatternReusesTheSurfacesAndMatchesAFreshPipeline) {
+  const int w = 96, h = 64;
+  Rect rect;
+  const std::vector<glm::vec3> colours{{0.9f, 0.2f, 0.1f}, {0.1f, 0.8f, 0.3f}};
+  AddRect(rect, 10.3, 5.7, 70.1, 50.2, 0.4, {0, 0, 1}, 0, w, h);
+  AddRect(rect, 40.6, 20.4, 90.9, 60.8, 0.6, glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f)), 1, w, h);
+  const FrameGeometry geometry{rect.clip, {}, rect.normals, rect.indices, rect.objects, colours};
+  const raster::SamplePattern rotated = raster::MakeBuiltinPattern("rotated-grid", 4);
+
+  Machine reused(GpuConfigByName("ps4-class"));
+  FramePipeline sequence(reused, SmallSettings(w, h));
+  sequence.Render(geometry);
+  const fmask::EqaaSurface* surfaceBefore = &sequence.Eqaa();
+  reused.ClearReports();
+  sequence.Render(geometry, {.pattern = &rotated, .frameIndex = 1});
+
+  Machine fresh(GpuConfigByName("ps4-class"));
+  FrameSettings settings = SmallSettings(w, h);
+  settings.pattern = rotated;
+  FramePipeline single(fresh, settings);
+  single.Render(geometry);
+
+  EXPECT_EQ(&sequence.Eqaa(), surfaceBefore);
+  EXPECT_EQ(sequence.FrameIndex(), 1);
+  EXPECT_EQ(sequence.DepthSurface().Pattern().Name(), rotated.Name());
+  EXPECT_EQ(Bytes(sequence.Colour()), Bytes(single.Colour()));
+  EXPECT_EQ(Bytes(sequence.Depth()), Bytes(single.Depth()));
+  EXPECT_EQ(EqaaBytes(sequence.Eqaa()), EqaaBytes(single.Eqaa()));
+  testing::ExpectSameReports(reused.Reports(), fresh.Reports());
+  // The standard and rotated-grid patterns differ, so the frames must too (or the test shows nothing).
+  Machine other(GpuConfigByName("ps4-class"));
+  FramePipeline standard(other, SmallSettings(w, h));
+  standard.Render(geometry);
+  EXPECT_NE(EqaaBytes(standard.Eqaa()), EqaaBytes(single.Eqaa()));
+
+  const raster::SamplePattern eight = raster::MakeBuiltinPattern("standard", 8);
+  EXPECT_THROW(sequence.Render(geometry, {.pattern = &eight}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sim
