@@ -100,6 +100,12 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
                       JoinNames(passes::PassNames()) + ", or all, or none (settings: aasim passes)")
       ->type_name("LIST")
       ->capture_default_str();
+  command
+      .add_option("--strategy", options.strategy,
+                  "Dispatch strategies the passes run under: stencil = stencil-culled full-screen pixel shader, "
+                  "queue = deferred queue + indirect compute, both = each a pass declares, compared")
+      ->check(CLI::IsMember({"both", "stencil", "queue"}))
+      ->capture_default_str();
 }
 
 void AddGroundTruthOptions(CLI::App& command, RunCommandOptions& options) {
@@ -198,6 +204,17 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
   CheckGroundTruthSamples(options.groundTruthSamples);
   options.eqaaModes = ParseEqaaModes(options.modes);
   options.postPasses = ResolvePasses(options.post);
+  options.strategies.clear();
+  if (const std::optional<passes::Strategy> one = passes::StrategyByName(options.strategy)) {
+    options.strategies = {*one};
+    for (const passes::PassConfig& pass : options.postPasses) {
+      const std::vector<passes::Strategy>& declared = pass.Info().strategies;
+      if (std::find(declared.begin(), declared.end(), *one) == declared.end()) {
+        throw CLI::ValidationError("--strategy " + options.strategy + ": pass " + std::string(pass.Info().name) +
+                                   " does not run under it");
+      }
+    }
+  }
   for (const NamedProgress& entry : kProgressModes) {
     if (entry.name == options.progress) options.progressMode = entry.mode;
   }
@@ -215,6 +232,7 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.gpu = options.gpu;
   config.flush = WaveFlushByName(options.flush);
   config.passes = options.postPasses;
+  config.strategies = options.strategies;
   config.groundTruth.samplesPerPixel = options.groundTruthSamples;
   if (!options.noCache) config.groundTruth.cache = options.cache;
   return config;

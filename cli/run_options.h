@@ -41,6 +41,7 @@ struct RunCommandOptions {
   std::string gpu;  // default set by AddRunCommand (AddMachineOptions)
   std::string flush = "mix";
   std::string post = "all";
+  std::string strategy = "both";  // stencil, queue or both
   int groundTruthSamples = 256;
   std::string cache;  // default set by AddRunCommand: scenes::GroundTruthCache::DefaultDirectory
   bool noCache = false;
@@ -51,6 +52,7 @@ struct RunCommandOptions {
   // Filled by ResolveRunOptions.
   std::vector<fmask::EqaaConfig> eqaaModes;
   std::vector<passes::PassConfig> postPasses;
+  std::vector<passes::Strategy> strategies;  // empty = every strategy each pass declares
   ProgressMode progressMode = ProgressMode::Auto;
 };
 

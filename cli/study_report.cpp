@@ -466,6 +466,7 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"gpu", options.gpu},
           {"flush", options.flush},
           {"post", PassNamesJson(options.postPasses)},
+          {"strategy", options.strategy},
           {"gt_samples", options.groundTruthSamples},
           {"cache", options.noCache ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cache)},
           {"threads", threads}};

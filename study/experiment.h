@@ -32,6 +32,8 @@ struct ExperimentConfig {
   std::string gpu;               // built-in name or file
   sim::WaveFlush flush = sim::WaveFlush::MixPrimitives;
   std::vector<passes::PassConfig> passes;
+  // The strategies every pass runs under, among those it declares; empty = all it declares.
+  std::vector<passes::Strategy> strategies;
   GroundTruthConfig groundTruth;
 };
 

@@ -2,11 +2,13 @@
 
 #include "study/study.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <ostream>
+#include <stdexcept>
 #include <type_traits>
 
 #include <oneapi/tbb/global_control.h>
@@ -168,8 +170,10 @@ class StudyRunner {
                      .settings = passes::DescribeSettings(config.settings),
                      .inputFrame = frameLabel,
                      .image = {name, "passes/" + name, {"pass output", 1, 1}, {}}};
+    const std::vector<passes::Strategy> strategies = StrategiesOf(info);
+    if (strategies.empty()) throw std::invalid_argument("pass " + name + " runs under none of the chosen strategies");
     std::optional<passes::PassOutput> first;
-    for (const passes::Strategy strategy : info.strategies) {
+    for (const passes::Strategy strategy : strategies) {
       const std::string strategyName(passes::StrategyName(strategy));
       StudyPassRun run{.strategy = strategy, .firstDispatch = study_.dispatches.size(), .endDispatch = 0, .layers = {}};
       // One instance per strategy: a pass with history must not carry one strategy's into the other's.
@@ -192,6 +196,17 @@ class StudyRunner {
     result.image.quality =
         Step(observer_, "metrics " + name, [&] { return ScoreAgainstGroundTruth(result.image.colour, study_.groundTruth); });
     study_.passes.push_back(std::move(result));
+  }
+
+  std::vector<passes::Strategy> StrategiesOf(const passes::PassInfo& info) const {
+    if (config_.strategies.empty()) return info.strategies;
+    std::vector<passes::Strategy> chosen;
+    for (const passes::Strategy strategy : info.strategies) {
+      if (std::find(config_.strategies.begin(), config_.strategies.end(), strategy) != config_.strategies.end()) {
+        chosen.push_back(strategy);
+      }
+    }
+    return chosen;
   }
 
   const StudyInputs& inputs_;

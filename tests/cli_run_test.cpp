@@ -219,6 +219,21 @@ TEST(CliRun, HelpExplainsEveryOptionAndTheDefaultJob) {
   fs::remove_all(scratch);
 }
 
+// --post with settings and --strategy reach the study: one strategy, the pass's own setting.
+TEST_F(CliRunTest, PassSettingsAndOneStrategyReachTheStudy) {
+  std::vector<std::string> args = SmallRun(*scratch_, *scratch_ / "queue-only", "2");
+  args.insert(args.end(), {"--modes", "1S/1Z/1F", "--post", "demo:threshold=0.3", "--strategy", "queue"});
+  const CommandResult run = RunAasim(args, *scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(ReadText(*scratch_ / "queue-only/report.json"));
+  ASSERT_EQ(report["passes"].size(), 1u);
+  EXPECT_EQ(report["passes"][0]["settings"], "threshold=0.3");
+  ASSERT_EQ(report["passes"][0]["strategies"].size(), 1u);
+  EXPECT_EQ(report["passes"][0]["strategies"][0]["strategy"], "queue");
+  EXPECT_EQ(report["configuration"]["strategy"], "queue");
+  EXPECT_LT(report["passes"][0]["edge_pixels"].get<int>(), Report()["passes"][0]["edge_pixels"].get<int>());
+}
+
 // Runs `aasim ARGS` in a fresh working directory with its own cache; returns the report.
 nlohmann::json RunInFreshDirectory(const std::string& args, const fs::path& scratch) {
   fs::remove_all(scratch);
@@ -287,6 +302,9 @@ std::vector<BadInput> BadInputs() {
     };
   };
   return {
+      {"UnknownStrategy", fixed({"--strategy", "sometimes"}), "--strategy", "not in", 2},
+      {"BadPassSetting", fixed({"--post", "demo:threshold=-1"}), "--post demo:threshold=-1",
+       "threshold=-1 outside (0, 1]", 2},
       {"ModeNotAMode", fixed({"--modes", "8S/4Z/2F,banana"}), "--modes", "'banana' is not an EQAA mode", 2},
       {"ModeIllegal", fixed({"--modes", "4S/4Z/8F"}), "4S/4Z/8F", "1S/1Z/1F (single sample, no FMASK)", 2},
       {"ModeTwice", fixed({"--modes", "8S/4Z/2F,8/4/2"}), "--modes", "named twice", 2},
