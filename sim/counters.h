@@ -27,6 +27,7 @@ struct LaneCounters {
   std::uint64_t ldsBytesWritten = 0;
   std::uint64_t barriers = 0;            // group barriers executed (per group)
   std::uint64_t appendOverflow = 0;      // appends dropped because the buffer was full
+  std::uint64_t slotOverflow = 0;        // reserved slots refused: the front and back fills met
   // Waves by active lanes, W0..W64.
   std::array<std::uint64_t, kWaveLanes + 1> wavesByActiveLanes{};
   // Rasterized quads by pixels passing depth/stencil, 0..4 (0 = culled, not launched).
@@ -66,6 +67,8 @@ inline constexpr LaneCounterField kLaneCounterFields[] = {
     {"lds/bytes_written", &LaneCounters::ldsBytesWritten, "LDS bytes written"},
     {"groups/barriers", &LaneCounters::barriers, "group barriers"},
     {"append/overflow", &LaneCounters::appendOverflow, "appends dropped: buffer full"},
+    {"slots/overflow", &LaneCounters::slotOverflow,
+     "slots refused: the reservation did not fit between the front and back fills"},
 };
 
 // Histogram names; element i of "waves/by_active_lanes" is the number of waves with i active

@@ -23,6 +23,7 @@
 
 #include "fmask/eqaa_surface.h"
 #include "raster/rasterizer.h"
+#include "sim/atomics.h"
 #include "sim/counters.h"
 #include "sim/gpu_config.h"
 #include "sim/heat_map.h"
@@ -61,6 +62,11 @@ class Dispatch {
   template <typename T>
   AppendView<T> Append(AppendBuffer<T>& buffer);
   StencilView Stencil(StencilBuffer& stencil) { return {stencil, Bind(stencil, "stencil")}; }
+  // Slot reservations from `counter`, and stores into the reserved slots of `buffer`
+  // (sim/atomics.h).
+  SlotCounterView Slots(SlotCounter& counter);
+  template <typename T>
+  SlotView<T> SlotWrite(Buffer<T>& buffer);
 
   // Compute dispatches over an image: thread (x, y) is pixel (x, y) in the heat map.
   void SetPixelGrid(int width, int height) { pixelGrid_ = {width, height}; }
@@ -76,12 +82,24 @@ class Dispatch {
     // Commits staged items (in chunk order) into the buffer; returns how many did not fit.
     std::function<std::uint64_t(std::span<const std::byte>)> commit;
   };
+  struct SlotCounterTarget {
+    SlotCounter* counter;
+    int slot;
+  };
+  struct SlotStoreTarget {
+    int slot;
+    // Writes one chunk's staged stores once its reservations are granted.
+    std::function<void(std::span<const std::byte>, std::span<const std::vector<std::uint32_t>>, ResourceTraffic&)>
+        commit;
+  };
   int Bind(const Resource& resource, std::string access);
 
   std::string name_;
   KernelInfo kernel_;
   std::vector<Binding> bindings_;
   std::vector<AppendTarget> appends_;
+  std::vector<SlotCounterTarget> slotCounters_;
+  std::vector<SlotStoreTarget> slotStores_;
   std::optional<glm::ivec2> pixelGrid_;
 };
 
@@ -187,6 +205,7 @@ class Machine {
                          int itemCountSlot);
   void Finish(Dispatch& dispatch, DispatchReport report, std::vector<detail::ChunkState>& chunks,
                                int threadsPerGroup);
+  static void CommitSlots(Dispatch& dispatch, const detail::ChunkState& chunk, DispatchReport& report);
   const raster::RasterResult& RasterizeFullScreen(const FullScreenCall& call, Dispatch& dispatch);
   // Where a pixel dispatch's quads come from and where its exports go.
   struct PixelTargets {

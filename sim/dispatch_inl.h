@@ -41,6 +41,18 @@ AppendView<T> Dispatch::Append(AppendBuffer<T>& buffer) {
   return {items, counter, staging, buffer.Storage().ElementBytes()};
 }
 
+template <typename T>
+SlotView<T> Dispatch::SlotWrite(Buffer<T>& buffer) {
+  const int slot = Bind(buffer, "slot-write");
+  const int staging = static_cast<int>(slotStores_.size());
+  slotStores_.push_back({slot, [&buffer](std::span<const std::byte> staged,
+                                         std::span<const std::vector<std::uint32_t>> granted,
+                                         ResourceTraffic& traffic) {
+                           detail::CommitSlotStores(buffer, staged, granted, traffic);
+                         }});
+  return {buffer, slot, staging};
+}
+
 namespace detail {
 inline double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -30,7 +30,17 @@ class KernelError : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
+// Which end of a slot range a reservation takes from (sim/atomics.h).
+enum class End : std::uint8_t { Front, Back };
+
 namespace detail {
+// One slot reservation a lane made in a chunk that runs in parallel with others; granted when the
+// chunk is committed (sim/atomics.h).
+struct SlotReservation {
+  End end;
+  std::uint32_t count;
+};
+
 // Everything the lanes of one chunk (a scan-converter bin or a fixed run of compute groups)
 // accumulate; chunks are merged in order after the dispatch, so results do not depend on which
 // host thread ran which chunk.
@@ -38,6 +48,11 @@ struct ChunkState {
   const std::string* dispatchName = nullptr;
   std::vector<ResourceTraffic> traffic;          // per binding
   std::vector<std::vector<std::byte>> appends;   // per append binding, staged items
+  std::vector<std::vector<SlotReservation>> reservations;  // per slot counter, in lane order
+  std::vector<std::vector<std::byte>> slotStores;          // per slot view, staged stores
+  // Chunks of this dispatch run one after another in chunk order (Dispatch::SerialChunks), so
+  // atomics may return values and slots are granted when reserved.
+  bool serial = false;
   LaneCounters lanes;
   TileHeatMap* heat = nullptr;
   std::vector<std::byte> lds;                    // the current group's shared memory

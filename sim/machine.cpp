@@ -51,6 +51,15 @@ int Dispatch::Bind(const Resource& resource, std::string access) {
   return static_cast<int>(bindings_.size() - 1);
 }
 
+SlotCounterView Dispatch::Slots(SlotCounter& counter) {
+  for (std::size_t i = 0; i < slotCounters_.size(); ++i) {
+    if (slotCounters_[i].counter == &counter) return {counter, static_cast<int>(i), slotCounters_[i].slot};
+  }
+  const int slot = Bind(counter.Counters(), "slot-counter");
+  slotCounters_.push_back({&counter, slot});
+  return {counter, static_cast<int>(slotCounters_.size() - 1), slot};
+}
+
 std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::size_t count, TileHeatMap* heat) const {
   for (const Dispatch::Binding& binding : dispatch.bindings_) const_cast<Resource*>(binding.resource)->BeginDispatch();
   std::vector<detail::ChunkState> chunks(std::max<std::size_t>(count, 1));
@@ -58,6 +67,8 @@ std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::siz
     chunk.dispatchName = &dispatch.name_;
     chunk.traffic.resize(dispatch.bindings_.size());
     chunk.appends.resize(dispatch.appends_.size());
+    chunk.reservations.resize(dispatch.slotCounters_.size());
+    chunk.slotStores.resize(dispatch.slotStores_.size());
     chunk.heat = heat;
   }
   return chunks;
@@ -214,6 +225,18 @@ const raster::RasterResult& Machine::RasterizeFullScreen(const FullScreenCall& c
   return rasterizer_.Run({kTriangle, kIndices, 0}, state, *surface);
 }
 
+void Machine::CommitSlots(Dispatch& dispatch, const detail::ChunkState& chunk, DispatchReport& report) {
+  std::vector<std::vector<std::uint32_t>> granted(dispatch.slotCounters_.size());
+  for (std::size_t c = 0; c < granted.size(); ++c) {
+    granted[c] = detail::GrantReservations(*dispatch.slotCounters_[c].counter, chunk.reservations[c],
+                                           report.lanes.slotOverflow);
+  }
+  for (std::size_t s = 0; s < dispatch.slotStores_.size(); ++s) {
+    const Dispatch::SlotStoreTarget& target = dispatch.slotStores_[s];
+    target.commit(chunk.slotStores[s], granted, report.resources[static_cast<std::size_t>(target.slot)]);
+  }
+}
+
 void Machine::Finish(Dispatch& dispatch, DispatchReport report,
                                       std::vector<detail::ChunkState>& chunks, int threadsPerGroup) {
   report.name = dispatch.Name();
@@ -227,6 +250,8 @@ void Machine::Finish(Dispatch& dispatch, DispatchReport report,
     for (std::size_t a = 0; a < chunk.appends.size(); ++a) {
       report.lanes.appendOverflow += dispatch.appends_[a].commit(chunk.appends[a]);
     }
+    // Chunk order: the prefix sum that makes slot indices independent of the thread count.
+    CommitSlots(dispatch, chunk, report);
   }
   for (std::size_t slot = 0; slot < dispatch.bindings_.size(); ++slot) {
     const Dispatch::Binding& binding = dispatch.bindings_[slot];
