@@ -10,8 +10,8 @@
 // within a chunk (a prefix sum in chunk order). Until then a slot has no index, so stores into
 // it are staged too and land at commit (SlotView): nothing can read a slot value before it is
 // final. Where the index itself is data (CMAA2 links list items by it, aa-facts §4.1) the
-// dispatch runs its chunks serially (Dispatch::SerialChunks): a reservation is granted at once
-// and SlotCounterView::Index returns it.
+// dispatch runs its chunks serially (Dispatch::SerialChunks): a reservation is granted at once,
+// SlotCounterView::Index returns it and slot stores land at once.
 //
 // Overflow: a reservation is granted only when all its slots fit between the front and the back
 // fill; otherwise it is refused whole, its stores are dropped and its slots are counted in
@@ -94,8 +94,11 @@ class QueueSlot {
   int counterIndex_ = -1;      // the dispatch's slot counter binding
   End end_ = End::Front;
   std::uint32_t count_ = 0;
-  std::uint32_t ordinal_ = 0;  // position in the chunk's reservation log
-  bool dropped_ = false;       // reserved by a helper lane: nothing was reserved
+  // Position in the chunk's reservation log; once granted (serial chunks), the first slot's k
+  // from its end, or kSlotRefused.
+  std::uint32_t ordinal_ = 0;
+  bool granted_ = false;
+  bool dropped_ = false;  // reserved by a helper lane: nothing was reserved
 };
 
 namespace detail {
@@ -109,6 +112,14 @@ struct StagedSlotStore {
   std::uint32_t element;
   End end;
 };
+
+inline void CheckSlotElement(const LaneBase& lane, const std::string& counter, std::uint32_t count,
+                             std::uint32_t element) {
+  if (element >= count) {
+    throw KernelError(*lane.chunk->dispatchName + ": element " + std::to_string(element) + " of a slot of " +
+                      std::to_string(count) + " from '" + counter + "'");
+  }
+}
 
 // Grants one chunk's reservations of one counter in lane order: the first granted k per
 // reservation, or kSlotRefused (whose slots are added to `overflow`).
@@ -164,10 +175,27 @@ class SlotCounterView {
     }
     ++lane.chunk->traffic[static_cast<std::size_t>(slot_)].atomics;
     counter_->Counters().TouchWrite(SlotCounter::Element(end) * 4, 4);
+    if (lane.chunk->serial) {
+      const std::optional<std::uint32_t> first = counter_->Grant(end, count);
+      if (!first) lane.chunk->lanes.slotOverflow += count;
+      slot.ordinal_ = first.value_or(detail::kSlotRefused);
+      slot.granted_ = true;
+      return slot;
+    }
     std::vector<detail::SlotReservation>& log = lane.chunk->reservations[static_cast<std::size_t>(counterIndex_)];
     slot.ordinal_ = static_cast<std::uint32_t>(log.size());
     log.push_back({end, count});
     return slot;
+  }
+  // The buffer index of `element` of a slot (the value atomicAdd gave the GPU kernel), for kernels
+  // that store it as data, as CMAA2's linked lists do (aa-facts §4.1); std::nullopt when the
+  // reservation was refused or made by a helper lane. Known only where chunks run serially: a
+  // KernelError elsewhere.
+  std::optional<std::size_t> Index(const LaneBase& lane, const QueueSlot& slot, std::uint32_t element = 0) const {
+    detail::RequireSerialChunks(lane, "a slot's index");
+    detail::CheckSlotElement(lane, slot.counter_->Name(), slot.count_, element);
+    if (slot.dropped_ || slot.ordinal_ == detail::kSlotRefused) return std::nullopt;
+    return slot.counter_->Index(slot.end_, slot.ordinal_ + element);
   }
 
  private:
@@ -187,11 +215,12 @@ class SlotView {
   // buffer[idx + element] for a front slot, buffer[idx - element] for a back slot.
   void Store(const LaneBase& lane, const QueueSlot& slot, const T& value, std::uint32_t element = 0) const {
     static_assert(std::is_trivially_copyable_v<T>);
-    if (element >= slot.count_) {
-      throw KernelError(*lane.chunk->dispatchName + ": store to element " + std::to_string(element) + " of a slot of " +
-                        std::to_string(slot.count_) + " from '" + slot.counter_->Name() + "'");
-    }
+    detail::CheckSlotElement(lane, slot.counter_->Name(), slot.count_, element);
     if (lane.helper || slot.dropped_) return;
+    if (slot.granted_) {
+      StoreGranted(lane, slot, value, element);
+      return;
+    }
     const detail::StagedSlotStore store{slot.counter_, static_cast<std::uint32_t>(slot.counterIndex_), slot.ordinal_,
                                         element, slot.end_};
     std::vector<std::byte>& staging = lane.chunk->slotStores[static_cast<std::size_t>(stagingIndex_)];
@@ -202,6 +231,16 @@ class SlotView {
   }
 
  private:
+  void StoreGranted(const LaneBase& lane, const QueueSlot& slot, const T& value, std::uint32_t element) const {
+    if (slot.ordinal_ == detail::kSlotRefused) return;
+    const std::size_t index = slot.counter_->Index(slot.end_, slot.ordinal_ + element);
+    if (index >= buffer_->Size()) return;
+    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
+    std::memcpy(&buffer_->At(index), &value, sizeof(T));
+    buffer_->TouchWrite(index * bytes, bytes);
+    lane.chunk->traffic[static_cast<std::size_t>(slot_)].bytesWritten += bytes;
+  }
+
   Buffer<T>* buffer_;
   int slot_, stagingIndex_;
 };

@@ -70,6 +70,11 @@ class Dispatch {
 
   // Compute dispatches over an image: thread (x, y) is pixel (x, y) in the heat map.
   void SetPixelGrid(int width, int height) { pixelGrid_ = {width, height}; }
+  // Runs the chunks (bins, or runs of compute groups) one after another in chunk order instead of
+  // in parallel, so atomics that return a value (RwBufferView::Interlocked*, slot indices) are
+  // deterministic: slower, for order-dependent kernels such as CMAA2's per-quad linked lists
+  // (aa-facts §4.1).
+  void SerialChunks() { serialChunks_ = true; }
 
  private:
   friend class Machine;
@@ -101,6 +106,7 @@ class Dispatch {
   std::vector<SlotCounterTarget> slotCounters_;
   std::vector<SlotStoreTarget> slotStores_;
   std::optional<glm::ivec2> pixelGrid_;
+  bool serialChunks_ = false;
 };
 
 struct DispatchReport {

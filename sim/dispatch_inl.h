@@ -54,6 +54,16 @@ SlotView<T> Dispatch::SlotWrite(Buffer<T>& buffer) {
 }
 
 namespace detail {
+// Runs body(chunk) for every chunk: in parallel, or in chunk order on the calling thread.
+template <typename Body>
+void ForEachChunk(std::size_t count, bool serial, const Body& body) {
+  if (serial) {
+    for (std::size_t chunk = 0; chunk < count; ++chunk) body(chunk);
+  } else {
+    tbb::parallel_for(std::size_t{0}, count, body);
+  }
+}
+
 inline double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -123,7 +133,7 @@ void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
     for (std::size_t bin = 0; bin < bins; ++bin) shaded_[bin].assign(result.quadsByBin[bin].size(), {});
   }
   const DispatchKind kind = report.kind;
-  tbb::parallel_for(std::size_t{0}, bins, [&](std::size_t bin) {
+  detail::ForEachChunk(bins, dispatch.serialChunks_, [&](std::size_t bin) {
     detail::ChunkState& chunk = chunks[bin];
     const std::vector<raster::QuadFragment>& quads = result.quadsByBin[bin];
     PackedWaves packed;
@@ -243,7 +253,7 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
   std::vector<detail::ChunkState> chunks = MakeChunks(dispatch, chunkCount, &report.heat);
   CountIndirectReads(dispatch, limits, chunks[0]);
   const auto ldsBytes = static_cast<std::size_t>(dispatch.Kernel().ldsBytesPerGroup);
-  tbb::parallel_for(std::size_t{0}, chunkCount, [&](std::size_t chunkIndex) {
+  detail::ForEachChunk(chunkCount, dispatch.serialChunks_, [&](std::size_t chunkIndex) {
     detail::ChunkState& chunk = chunks[chunkIndex];
     chunk.lds.assign(ldsBytes, std::byte{0});
     std::vector<ComputeLane> lanes(static_cast<std::size_t>(groupThreads));

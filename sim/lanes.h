@@ -69,6 +69,17 @@ struct LaneBase {
   detail::ChunkState* chunk = nullptr;
 };
 
+namespace detail {
+// Refuses an operation whose result depends on the order in which lanes of different chunks run,
+// unless the chunks run serially.
+inline void RequireSerialChunks(const LaneBase& lane, const char* what) {
+  if (lane.chunk->serial) return;
+  throw KernelError(*lane.chunk->dispatchName + ": " + what +
+                    " depends on the order lanes run in; call Dispatch::SerialChunks() so the dispatch runs its "
+                    "chunks one after another (slower, but deterministic)");
+}
+}  // namespace detail
+
 struct PixelLane : LaneBase {
   int x = 0, y = 0;
   int quadPixel = 0;   // raster::QuadPixelIndex order

@@ -70,6 +70,7 @@ std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::siz
     chunk.reservations.resize(dispatch.slotCounters_.size());
     chunk.slotStores.resize(dispatch.slotStores_.size());
     chunk.heat = heat;
+    chunk.serial = dispatch.serialChunks_;
   }
   return chunks;
 }

@@ -7,9 +7,11 @@
 // Views are created by sim::Dispatch, which records the binding they count into.
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
@@ -141,17 +143,59 @@ class RwBufferView {
     buffer_->TouchWrite(index * bytes, bytes);
     buffer_->At(index) = value;
   }
-  // InterlockedAdd without a return value: additions commute, so the result is deterministic.
+  // Atomics without a returned value (InterlockedAdd/Min/Max with no `original`): they commute,
+  // so the result is the same whichever lane comes first, and any dispatch may use them.
   void AtomicAdd(const LaneBase& lane, std::size_t index, T value) const {
-    static_assert(std::is_integral_v<T>, "atomics are defined on integer buffers");
-    if (lane.helper || index >= buffer_->Size()) return;
-    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
-    ++detail::Traffic(lane, slot_).atomics;
-    buffer_->TouchWrite(index * bytes, bytes);
-    std::atomic_ref<T>(buffer_->At(index)).fetch_add(value, std::memory_order_relaxed);
+    Rmw(lane, index, [value](T old) { return static_cast<T>(old + value); });
+  }
+  void AtomicMin(const LaneBase& lane, std::size_t index, T value) const {
+    Rmw(lane, index, [value](T old) { return std::min(old, value); });
+  }
+  void AtomicMax(const LaneBase& lane, std::size_t index, T value) const {
+    Rmw(lane, index, [value](T old) { return std::max(old, value); });
+  }
+  // Atomics returning the value before the operation (`original` in HLSL). The value depends on
+  // which lane came first, so only a dispatch whose chunks run serially may use them
+  // (Dispatch::SerialChunks; a KernelError elsewhere). Helper lanes and out-of-range indices
+  // change nothing and get 0 (D3D leaves that value undefined: SM5 imm_atomic_* remarks).
+  T InterlockedAdd(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedAdd's returned value");
+    return Rmw(lane, index, [value](T old) { return static_cast<T>(old + value); });
+  }
+  T InterlockedMin(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedMin's returned value");
+    return Rmw(lane, index, [value](T old) { return std::min(old, value); });
+  }
+  T InterlockedMax(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedMax's returned value");
+    return Rmw(lane, index, [value](T old) { return std::max(old, value); });
+  }
+  T InterlockedExchange(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedExchange");
+    return Rmw(lane, index, [value](T) { return value; });
+  }
+  // Stores `value` only where the element equals `compare`.
+  T InterlockedCompareExchange(const LaneBase& lane, std::size_t index, T compare, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedCompareExchange");
+    return Rmw(lane, index, [compare, value](T old) { return old == compare ? value : old; });
   }
 
  private:
+  // One atomic read-modify-write; returns the value before it, or 0 when dropped.
+  template <typename Op>
+  T Rmw(const LaneBase& lane, std::size_t index, Op op) const {
+    static_assert(std::is_integral_v<T>, "atomics are defined on integer buffers");
+    if (lane.helper || index >= buffer_->Size()) return T{};
+    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
+    ++detail::Traffic(lane, slot_).atomics;
+    buffer_->TouchWrite(index * bytes, bytes);
+    std::atomic_ref<T> element(buffer_->At(index));
+    T old = element.load(std::memory_order_relaxed);
+    while (!element.compare_exchange_weak(old, op(old), std::memory_order_relaxed)) {
+    }
+    return old;
+  }
+
   Buffer<T>* buffer_;
   BufferView<T> read_;
   int slot_;

@@ -1,12 +1,17 @@
 // Slot atomics (sim/atomics.h): reservations from both ends of one range, granted in chunk order
 // so slot indices and buffer contents do not depend on the host thread count, and refused whole
-// when the two fills meet.
+// when the two fills meet. Atomics returning a value (linked lists): only where chunks run
+// serially, and then identical for any thread count.
 
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/dispatch.h"
@@ -36,13 +41,14 @@ struct FillRun {
 };
 
 // The FXAA queue's shape (aa-facts §3): one counter pair, two buffers written through one slot.
-FillRun FillFromBothEnds(int threads, int items, std::size_t capacity) {
+FillRun FillFromBothEnds(int threads, int items, std::size_t capacity, bool serial = false) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   Machine machine = TestMachine();
   SlotCounter counter("queue/counters", capacity);
   Buffer<std::uint32_t> queue("queue/items", capacity, 4, kEmpty);
   Buffer<std::uint32_t> colour("queue/colours", capacity, 4, kEmpty);
   Dispatch d("test/fill", SmallKernel());
+  if (serial) d.SerialChunks();
   const SlotCounterView slots = d.Slots(counter);
   const SlotView<std::uint32_t> queueOut = d.SlotWrite(queue);
   const SlotView<std::uint32_t> colourOut = d.SlotWrite(colour);
@@ -92,6 +98,12 @@ TEST(SimAtomics, SlotsAndBufferContentsDoNotDependOnTheThreadCount) {
   EXPECT_EQ(r.resources[1].bytesWritten, 4u * (front + back));
   EXPECT_EQ(r.resources[2].bytesWritten, 4u * (front + back));
   EXPECT_EQ(r.lanes.slotOverflow, 0u);
+
+  // Serial chunks grant at once instead of at commit: the same slots.
+  const FillRun serial = FillFromBothEnds(2, items, capacity, true);
+  testing::ExpectSameReports(one.reports, serial.reports);
+  EXPECT_EQ(serial.items, expected);
+  EXPECT_EQ(serial.colours, two.colours);
 }
 
 TEST(SimAtomics, FrontAndBackFillsMeetInTheMiddle) {
@@ -175,6 +187,148 @@ TEST(SimAtomics, SlotStoresPastTheBufferAreDropped) {
   EXPECT_EQ(items, (std::vector<std::uint32_t>{0, 1, kEmpty, kEmpty, kEmpty, kEmpty}));
   EXPECT_EQ(r.resources[1].bytesWritten, 8u);
   EXPECT_EQ(r.lanes.slotOverflow, 0u);
+}
+
+// CMAA2's deferred blend lists (aa-facts §4.1): an item takes a slot, swaps its index into its
+// quad's head and links to the previous head.
+struct Node {
+  std::uint32_t next, value;
+  friend bool operator==(const Node&, const Node&) = default;
+};
+constexpr int kListThreads = 4096;
+constexpr std::size_t kListCapacity = 3000;  // fewer than the reservations: some are refused
+constexpr std::uint32_t kBuckets = 37;
+
+bool Reserves(std::uint32_t i) { return i % 5 != 4; }
+std::uint32_t BucketOf(std::uint32_t i) { return (i * 2654435761u >> 12) % kBuckets; }
+
+struct ListRun {
+  std::vector<DispatchReport> reports;
+  std::vector<std::uint32_t> heads;
+  std::vector<Node> nodes;
+};
+
+ListRun BuildLists(int threads) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  Machine machine = TestMachine();
+  SlotCounter counter("lists/counter", kListCapacity);
+  Buffer<std::uint32_t> heads("lists/heads", kBuckets, 4, kEmpty);
+  Buffer<Node> nodes("lists/nodes", kListCapacity, 8, Node{kEmpty, kEmpty});
+  Dispatch d("test/lists", SmallKernel());
+  d.SerialChunks();
+  const SlotCounterView slots = d.Slots(counter);
+  const SlotView<Node> nodesOut = d.SlotWrite(nodes);
+  const RwBufferView<std::uint32_t> headsRw = d.ReadWrite(heads);
+  machine.Compute(d, {.threads = {kListThreads, 1, 1}, .groupSize = {64, 1, 1}}, [&](ComputeLane& lane) {
+    const auto i = static_cast<std::uint32_t>(lane.threadId.x);
+    if (!Reserves(i)) return;
+    const QueueSlot slot = slots.Reserve(lane, End::Front);
+    const std::optional<std::size_t> index = slots.Index(lane, slot);
+    if (!index) return;
+    const std::uint32_t previous = headsRw.InterlockedExchange(lane, BucketOf(i), static_cast<std::uint32_t>(*index));
+    nodesOut.Store(lane, slot, Node{previous, i});
+  });
+  return {machine.Reports(), {heads.Elements().begin(), heads.Elements().end()},
+          {nodes.Elements().begin(), nodes.Elements().end()}};
+}
+
+TEST(SimAtomics, LinkedListsBuiltWithExchangeDoNotDependOnTheThreadCount) {
+  const ListRun one = BuildLists(1);
+  const ListRun two = BuildLists(2);
+  testing::ExpectSameReports(one.reports, two.reports);
+  EXPECT_EQ(one.heads, two.heads);
+  EXPECT_EQ(one.nodes, two.nodes);
+
+  // Brute force: threads in launch order, until the slots run out.
+  std::vector<std::uint32_t> heads(kBuckets, kEmpty);
+  std::vector<Node> nodes(kListCapacity, Node{kEmpty, kEmpty});
+  std::uint64_t used = 0, refused = 0;
+  for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(kListThreads); ++i) {
+    if (!Reserves(i)) continue;
+    if (used == kListCapacity) {
+      ++refused;
+      continue;
+    }
+    nodes[used] = {heads[BucketOf(i)], i};
+    heads[BucketOf(i)] = static_cast<std::uint32_t>(used++);
+  }
+  ASSERT_GT(refused, 0u);
+  EXPECT_EQ(two.heads, heads);
+  EXPECT_EQ(two.nodes, nodes);
+  const DispatchReport& r = two.reports[0];
+  EXPECT_EQ(r.lanes.slotOverflow, refused);
+  EXPECT_EQ(r.resources[2].atomics, kListCapacity);           // one exchange per granted item
+  EXPECT_EQ(r.resources[1].bytesWritten, 8u * kListCapacity);  // the nodes
+}
+
+TEST(SimAtomics, ReturningAtomicsReturnThePreviousValueInLaneOrder) {
+  Machine machine = TestMachine();
+  Buffer<std::uint32_t> cells("cells", 4, 4, 50);
+  Buffer<std::uint32_t> returned("returned", 5 * 100, 4, 0);
+  Dispatch d("test/returning", SmallKernel());
+  d.SerialChunks();
+  const RwBufferView<std::uint32_t> rw = d.ReadWrite(cells);
+  const RwBufferView<std::uint32_t> out = d.ReadWrite(returned);
+  auto value = [](std::uint32_t i) { return (i * 37u) % 101u; };
+  machine.Compute(d, {.threads = {100, 1, 1}}, [&](ComputeLane& lane) {
+    const auto i = static_cast<std::uint32_t>(lane.threadId.x);
+    out.Store(lane, 5 * i + 0, rw.InterlockedAdd(lane, 0, value(i)));
+    out.Store(lane, 5 * i + 1, rw.InterlockedMin(lane, 1, value(i)));
+    out.Store(lane, 5 * i + 2, rw.InterlockedMax(lane, 2, value(i)));
+    out.Store(lane, 5 * i + 3, rw.InterlockedCompareExchange(lane, 3, value(i) % 2 == 0 ? 50u : 0u, value(i)));
+    out.Store(lane, 5 * i + 4, rw.InterlockedAdd(lane, 99, 1));  // out of range: 0, nothing changes
+  });
+  std::vector<std::uint32_t> cell(4, 50), expected(5 * 100, 0);
+  for (std::uint32_t i = 0; i < 100; ++i) {
+    const std::uint32_t v = value(i);
+    expected[5 * i + 0] = std::exchange(cell[0], cell[0] + v);
+    expected[5 * i + 1] = std::exchange(cell[1], std::min(cell[1], v));
+    expected[5 * i + 2] = std::exchange(cell[2], std::max(cell[2], v));
+    expected[5 * i + 3] = cell[3];
+    if (cell[3] == (v % 2 == 0 ? 50u : 0u)) cell[3] = v;
+  }
+  EXPECT_EQ(std::vector<std::uint32_t>(returned.Elements().begin(), returned.Elements().end()), expected);
+  EXPECT_EQ(std::vector<std::uint32_t>(cells.Elements().begin(), cells.Elements().end()), cell);
+}
+
+TEST(SimAtomics, OrderIndependentAtomicsRunInParallelAndOrderDependentOnesAreRefused) {
+  Machine machine = TestMachine();
+  Buffer<std::uint32_t> cells("cells", 3, 4, 500);
+  Dispatch d("test/commuting", SmallKernel());
+  const RwBufferView<std::uint32_t> rw = d.ReadWrite(cells);
+  machine.Compute(d, {.threads = {2048, 1, 1}}, [&](ComputeLane& lane) {
+    const auto i = static_cast<std::uint32_t>(lane.threadId.x);
+    rw.AtomicAdd(lane, 0, i);
+    rw.AtomicMin(lane, 1, (i * 37u) % 1001u + 3);
+    rw.AtomicMax(lane, 2, (i * 37u) % 1001u + 3);
+  });
+  EXPECT_EQ(cells.At(0), 500u + 2047u * 2048u / 2);
+  EXPECT_EQ(cells.At(1), 3u);
+  EXPECT_EQ(cells.At(2), 1003u);
+
+  SlotCounter counter("refused/counter", 16);
+  auto expectRefused = [&](const char* name, auto&& kernel) {
+    Dispatch parallel(name, SmallKernel());
+    const RwBufferView<std::uint32_t> cellsRw = parallel.ReadWrite(cells);
+    const SlotCounterView slots = parallel.Slots(counter);
+    try {
+      machine.Compute(parallel, {.threads = {64, 1, 1}}, [&](ComputeLane& lane) { kernel(lane, cellsRw, slots); });
+      ADD_FAILURE() << name << ": expected a KernelError";
+    } catch (const KernelError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(name), std::string::npos) << message;
+      EXPECT_NE(message.find("SerialChunks"), std::string::npos) << message;
+    }
+  };
+  expectRefused("test/exchange", [](ComputeLane& lane, const RwBufferView<std::uint32_t>& target, const SlotCounterView&) {
+    target.InterlockedExchange(lane, 0, 1);
+  });
+  expectRefused("test/add", [](ComputeLane& lane, const RwBufferView<std::uint32_t>& target, const SlotCounterView&) {
+    target.InterlockedAdd(lane, 0, 1);
+  });
+  expectRefused("test/slot-index", [](ComputeLane& lane, const RwBufferView<std::uint32_t>&, const SlotCounterView& slots) {
+    slots.Index(lane, slots.Reserve(lane, End::Front));
+  });
 }
 
 }  // namespace
