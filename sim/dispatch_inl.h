@@ -256,6 +256,7 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
   detail::ForEachChunk(chunkCount, dispatch.serialChunks_, [&](std::size_t chunkIndex) {
     detail::ChunkState& chunk = chunks[chunkIndex];
     chunk.lds.assign(ldsBytes, std::byte{0});
+    chunk.groupThreads = groupThreads;
     std::vector<ComputeLane> lanes(static_cast<std::size_t>(groupThreads));
     std::vector<glm::ivec2> attribution(static_cast<std::size_t>(groupThreads));
     std::vector<std::uint8_t> live(static_cast<std::size_t>(groupThreads));
@@ -265,6 +266,7 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
       const auto gi = static_cast<int>(g);
       const glm::ivec3 groupId{gi % groups.x, (gi / groups.x) % groups.y, gi / (groups.x * groups.y)};
       std::fill(chunk.lds.begin(), chunk.lds.end(), std::byte{0});
+      std::fill(chunk.privates.begin(), chunk.privates.end(), std::byte{0});
       std::fill(waveExec.begin(), waveExec.end(), std::uint64_t{0});
       for (int i = 0; i < groupThreads; ++i) {
         ComputeLane& lane = lanes[static_cast<std::size_t>(i)];

@@ -5,10 +5,12 @@
 // Kernels are C++ callables taking a PixelLane& or ComputeLane&; resource views (sim/views.h)
 // take the lane so they can count traffic into the lane's chunk without locks.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -56,7 +58,20 @@ struct ChunkState {
   LaneCounters lanes;
   TileHeatMap* heat = nullptr;
   std::vector<std::byte> lds;                    // the current group's shared memory
+  // Per-thread values that persist across the stages of one group (ComputeLane::Private): one
+  // T per thread of the group, sized by the first Private<T>() call and zeroed per group.
+  int groupThreads = 0;
+  const void* privateType = nullptr;
+  std::size_t privateStride = 0;
+  std::vector<std::byte> privates;
+
+  // Thread `thread`'s private T (identified by `type`); a KernelError for a second type.
+  std::byte* PrivateAt(const void* type, std::size_t size, int thread);
 };
+
+// One address per type: identifies the T of Private<T>() without RTTI.
+template <typename T>
+inline constexpr char kTypeTag = 0;
 }  // namespace detail
 
 struct LaneBase {
@@ -139,11 +154,54 @@ struct ComputeLane : LaneBase {
     std::memcpy(LdsAddress(index * sizeof(T), sizeof(T)), &value, sizeof(T));
     chunk->lanes.ldsBytesWritten += sizeof(T);
   }
+  // LDS atomics returning the value before the operation (InterlockedAdd/Min/Max/Exchange on
+  // groupshared memory). A group runs on one host thread with its lanes in order, so the returned
+  // values are deterministic in any dispatch. Each reads and writes sizeof(T) LDS bytes.
+  template <typename T>
+  T LdsAtomicAdd(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T old) { return static_cast<T>(old + value); });
+  }
+  template <typename T>
+  T LdsAtomicMin(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T old) { return std::min(old, value); });
+  }
+  template <typename T>
+  T LdsAtomicMax(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T old) { return std::max(old, value); });
+  }
+  template <typename T>
+  T LdsAtomicExchange(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T) { return value; });
+  }
+
+  // This thread's T, kept across the stages (barriers) of its group: what a shader keeps in
+  // registers across a barrier, without going through LDS. Every thread's T starts zeroed in
+  // every group; a dispatch uses one T for all its stages. Registers are not memory: nothing is
+  // counted (the kernel's VGPR count declares their cost).
+  template <typename T>
+  T& Private() const {
+    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+    // The storage comes from operator new; sizeof(T) is a multiple of alignof(T).
+    static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
+    return *std::launder(reinterpret_cast<T*>(chunk->PrivateAt(&detail::kTypeTag<T>, sizeof(T), localIndex)));
+  }
   // Names the pixel this lane worked on, for the heat map (indirect dispatches over queued items).
   void AttributeTo(int px, int py) const { *attribution = {px, py}; }
 
  private:
   std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const;
+  template <typename T, typename Op>
+  T LdsRmw(std::size_t index, Op op) const {
+    static_assert(std::is_integral_v<T>, "LDS atomics are defined on integers");
+    std::byte* address = LdsAddress(index * sizeof(T), sizeof(T));
+    T old;
+    std::memcpy(&old, address, sizeof(T));
+    const T updated = op(old);
+    std::memcpy(address, &updated, sizeof(T));
+    chunk->lanes.ldsBytesRead += sizeof(T);
+    chunk->lanes.ldsBytesWritten += sizeof(T);
+    return old;
+  }
 };
 
 }  // namespace sim

@@ -26,6 +26,17 @@ std::byte* ComputeLane::LdsAddress(std::size_t byteOffset, std::size_t bytes) co
   return chunk->lds.data() + byteOffset;
 }
 
+std::byte* detail::ChunkState::PrivateAt(const void* type, std::size_t size, int thread) {
+  if (privateType == nullptr) {
+    privateType = type;
+    privateStride = size;
+    privates.assign(privateStride * static_cast<std::size_t>(groupThreads), std::byte{0});
+  } else if (privateType != type) {
+    throw KernelError(*dispatchName + ": Private<T>() with two different types; one dispatch keeps one T per thread");
+  }
+  return privates.data() + privateStride * static_cast<std::size_t>(thread);
+}
+
 std::uint64_t DispatchReport::DramBytes() const {
   std::uint64_t bytes = 0;
   for (const ResourceTraffic& traffic : resources) bytes += traffic.DramBytes();
