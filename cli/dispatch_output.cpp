@@ -45,6 +45,7 @@ constexpr TrafficField kRequestFields[] = {
     {"bytes_written", &sim::ResourceTraffic::bytesWritten},
     {"fetches", &sim::ResourceTraffic::fetches},
     {"atomics", &sim::ResourceTraffic::atomics},
+    {"stores_dropped_oob", &sim::ResourceTraffic::storesDroppedOob},
 };
 // Distinct 64-byte lines behind the requests.
 constexpr TrafficField kLineFields[] = {

@@ -14,10 +14,11 @@
 // SlotCounterView::Index returns it and slot stores land at once.
 //
 // Overflow: a reservation is granted only when all its slots fit between the front and the back
-// fill; otherwise it is refused whole, its stores are dropped and its slots are counted in
-// slots/overflow. The counters hold granted slots only (as the append counter does), so a later
-// resolve kernel never sees more than the capacity. A GPU keeps counting past the capacity and
-// lets the two fills overwrite each other; MiniEngine sizes its queue so that cannot happen.
+// fill; otherwise it is refused whole, its slots are counted in slots/overflow and its stores
+// are dropped like out-of-range stores (stores_dropped_oob), as a GPU's would be. The counters
+// hold granted slots only (as the append counter does), so a later resolve kernel never sees
+// more than the capacity. A GPU keeps counting past the capacity and lets the two fills
+// overwrite each other; MiniEngine sizes its queue so that cannot happen.
 
 #include <cstddef>
 #include <cstdint>
@@ -145,9 +146,12 @@ void CommitSlotStores(Buffer<T>& buffer, std::span<const std::byte> staged,
     StagedSlotStore store;
     std::memcpy(&store, staged.data() + at, sizeof(store));
     const std::uint32_t first = granted[store.counterIndex][store.ordinal];
-    if (first == kSlotRefused) continue;
-    const std::size_t index = store.counter->Index(store.end, first + store.element);
-    if (index >= buffer.Size()) continue;
+    const std::size_t index =
+        first == kSlotRefused ? buffer.Size() : store.counter->Index(store.end, first + store.element);
+    if (index >= buffer.Size()) {
+      ++traffic.storesDroppedOob;
+      continue;
+    }
     std::memcpy(&buffer.At(index), staged.data() + at + sizeof(store), sizeof(T));
     buffer.TouchWrite(index * bytes, bytes);
     traffic.bytesWritten += bytes;
@@ -232,13 +236,18 @@ class SlotView {
 
  private:
   void StoreGranted(const LaneBase& lane, const QueueSlot& slot, const T& value, std::uint32_t element) const {
-    if (slot.ordinal_ == detail::kSlotRefused) return;
-    const std::size_t index = slot.counter_->Index(slot.end_, slot.ordinal_ + element);
-    if (index >= buffer_->Size()) return;
+    const std::size_t index = slot.ordinal_ == detail::kSlotRefused
+                                  ? buffer_->Size()
+                                  : slot.counter_->Index(slot.end_, slot.ordinal_ + element);
+    ResourceTraffic& traffic = lane.chunk->traffic[static_cast<std::size_t>(slot_)];
+    if (index >= buffer_->Size()) {
+      ++traffic.storesDroppedOob;
+      return;
+    }
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
     std::memcpy(&buffer_->At(index), &value, sizeof(T));
     buffer_->TouchWrite(index * bytes, bytes);
-    lane.chunk->traffic[static_cast<std::size_t>(slot_)].bytesWritten += bytes;
+    traffic.bytesWritten += bytes;
   }
 
   Buffer<T>* buffer_;

@@ -114,6 +114,9 @@ struct ResourceTraffic {
   std::uint64_t bytesWritten = 0;
   std::uint64_t fetches = 0;  // load/sample instructions per lane (a bilinear sample is one)
   std::uint64_t atomics = 0;
+  // Stores and atomics outside the resource, dropped as D3D requires of UAVs (aa-facts §3: the
+  // FXAA queue's padding items rely on it), and slot stores of refused reservations.
+  std::uint64_t storesDroppedOob = 0;
   std::uint64_t linesRead = 0;
   std::uint64_t linesWritten = 0;
 
@@ -122,6 +125,7 @@ struct ResourceTraffic {
     bytesWritten += other.bytesWritten;
     fetches += other.fetches;
     atomics += other.atomics;
+    storesDroppedOob += other.storesDroppedOob;
   }
   std::uint64_t DramBytes() const { return (linesRead + linesWritten) * kCacheLineBytes; }
   friend bool operator==(const ResourceTraffic&, const ResourceTraffic&) = default;

@@ -4,6 +4,7 @@
 // it touched. Out-of-range loads return zero and out-of-range stores are dropped, as D3D UAV
 // semantics require (aa-facts §3: the FXAA queue relies on dropped out-of-bounds writes); stores
 // and appends from helper lanes are dropped, as the hardware masks them (hw-facts §6.1).
+// Dropped out-of-range stores and atomics are counted per binding (stores_dropped_oob).
 // Views are created by sim::Dispatch, which records the binding they count into.
 
 #include <algorithm>
@@ -97,7 +98,11 @@ class RwTextureView {
   int Height() const { return texture_->Height(); }
   T Load(const LaneBase& lane, int x, int y) const { return read_.Load(lane, x, y); }
   void Store(const LaneBase& lane, int x, int y, const T& value) const {
-    if (lane.helper || !texture_->Contains(x, y)) return;
+    if (lane.helper) return;
+    if (!texture_->Contains(x, y)) {
+      ++detail::Traffic(lane, slot_).storesDroppedOob;
+      return;
+    }
     const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
     detail::Traffic(lane, slot_).bytesWritten += bytes;
     texture_->TouchWrite(texture_->Index(x, y) * bytes, bytes);
@@ -137,7 +142,11 @@ class RwBufferView {
   std::size_t Size() const { return buffer_->Size(); }
   T Load(const LaneBase& lane, std::size_t index) const { return read_.Load(lane, index); }
   void Store(const LaneBase& lane, std::size_t index, const T& value) const {
-    if (lane.helper || index >= buffer_->Size()) return;
+    if (lane.helper) return;
+    if (index >= buffer_->Size()) {
+      ++detail::Traffic(lane, slot_).storesDroppedOob;
+      return;
+    }
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
     detail::Traffic(lane, slot_).bytesWritten += bytes;
     buffer_->TouchWrite(index * bytes, bytes);
@@ -185,7 +194,11 @@ class RwBufferView {
   template <typename Op>
   T Rmw(const LaneBase& lane, std::size_t index, Op op) const {
     static_assert(std::is_integral_v<T>, "atomics are defined on integer buffers");
-    if (lane.helper || index >= buffer_->Size()) return T{};
+    if (lane.helper) return T{};
+    if (index >= buffer_->Size()) {
+      ++detail::Traffic(lane, slot_).storesDroppedOob;
+      return T{};
+    }
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
     ++detail::Traffic(lane, slot_).atomics;
     buffer_->TouchWrite(index * bytes, bytes);

@@ -353,7 +353,8 @@ sim::DispatchReport HandBuiltReport() {
   sim::ResourceTraffic colour{
       .name = "colour", .access = "read", .bytesRead = 1200, .fetches = 300, .linesRead = 20};
   sim::ResourceTraffic queue{
-      .name = "queue", .access = "append", .bytesWritten = 40, .atomics = 10, .linesWritten = 1};
+      .name = "queue", .access = "append", .bytesWritten = 40, .atomics = 10, .storesDroppedOob = 3,
+      .linesWritten = 1};
   report.resources = {colour, queue};
   report.occupancy = {.wavesPerSimd = 8,
                       .maxWavesPerSimd = 10,
@@ -410,6 +411,7 @@ TEST(CliFrameDispatchOutput, JsonFollowsTheSchemaAndTheFieldTables) {
   EXPECT_EQ(d["resources"][0]["name"], "colour");
   EXPECT_EQ(d["resources"][0]["dram_bytes"], 20 * 64);
   EXPECT_EQ(d["resources"][1]["atomics"], 10);
+  EXPECT_EQ(d["resources"][1]["stores_dropped_oob"], 3);
   EXPECT_EQ(d["occupancy"]["waves_per_simd"], 8);
   EXPECT_EQ(d["occupancy"]["limiter"], sim::LimiterName(sim::OccupancyLimiter::Vgpr));
   EXPECT_EQ(d["occupancy"]["lds_bytes_allocated"], 512);
@@ -449,6 +451,7 @@ TEST(CliFrameDispatchOutput, CsvRowsMatchTheHeader) {
   EXPECT_EQ(row["lanes/active"], "300");
   EXPECT_EQ(row["bytes_read"], "1200");
   EXPECT_EQ(row["bytes_written"], "40");
+  EXPECT_EQ(row["stores_dropped_oob"], "3");
   EXPECT_EQ(row["dram_bytes"], std::to_string(21 * 64));
   EXPECT_EQ(row["occupancy_waves_per_simd"], "8");
   EXPECT_EQ(row["occupancy_limiter"], sim::LimiterName(sim::OccupancyLimiter::Vgpr));

@@ -126,7 +126,8 @@ TEST(SimAtomics, FrontAndBackFillsMeetInTheMiddle) {
     EXPECT_EQ(counter.Count(End::Back), 5u);
     EXPECT_EQ(r.lanes.slotOverflow, static_cast<std::uint64_t>(threads - 10));
     EXPECT_EQ(r.resources[0].atomics, static_cast<std::uint64_t>(threads));  // refused reservations are atomics too
-    EXPECT_EQ(r.resources[1].bytesWritten, 40u);                             // refused stores are dropped
+    EXPECT_EQ(r.resources[1].bytesWritten, 40u);  // refused stores are dropped, and counted so
+    EXPECT_EQ(r.resources[1].storesDroppedOob, static_cast<std::uint64_t>(threads - 10));
   }
 }
 
@@ -156,6 +157,7 @@ TEST(SimAtomics, ARefusedReservationIsRefusedWholeAndLaterOnesStillFit) {
   EXPECT_EQ(counter.Count(End::Front), 4u);
   EXPECT_EQ(counter.Count(End::Back), 6u);
   EXPECT_EQ(r.lanes.slotOverflow, 3u);
+  EXPECT_EQ(r.resources[1].storesDroppedOob, 3u);
 
   Dispatch bad("test/past-the-slot", SmallKernel());
   const SlotCounterView badSlots = bad.Slots(counter);
@@ -186,6 +188,7 @@ TEST(SimAtomics, SlotStoresPastTheBufferAreDropped) {
   const std::vector<std::uint32_t> items(queue.Elements().begin(), queue.Elements().end());
   EXPECT_EQ(items, (std::vector<std::uint32_t>{0, 1, kEmpty, kEmpty, kEmpty, kEmpty}));
   EXPECT_EQ(r.resources[1].bytesWritten, 8u);
+  EXPECT_EQ(r.resources[1].storesDroppedOob, 2u);
   EXPECT_EQ(r.lanes.slotOverflow, 0u);
 }
 

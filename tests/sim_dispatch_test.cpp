@@ -314,6 +314,44 @@ TEST(SimDispatch, TrafficCountsRequestsAndDistinctLines) {
   EXPECT_FLOAT_EQ(r.heat.Utilization(3, 5), 1.0f);
 }
 
+TEST(SimDispatch, OutOfRangeUavStoresAreDroppedAndCountedPerResource) {
+  Machine machine = TestMachine();
+  Texture2D<float> target("target", 6, 5, 4, 0.0f);
+  Buffer<std::uint32_t> cells("cells", 10, 4, 0);
+  Dispatch d("test/oob", SmallKernel());
+  const RwTextureView<float> texture = d.ReadWrite(target);
+  const RwBufferView<std::uint32_t> buffer = d.ReadWrite(cells);
+  const DispatchReport r = machine.Compute(d, {.threads = {3, 1, 1}}, [&](ComputeLane& lane) {
+    for (const glm::ivec2 at : {glm::ivec2(-1, 0), glm::ivec2(0, -1), glm::ivec2(6, 0), glm::ivec2(0, 5)}) {
+      texture.Store(lane, at.x, at.y, 9.0f);
+    }
+    texture.Store(lane, lane.threadId.x, 0, 1.0f);
+    buffer.Store(lane, 10, 9u);
+    buffer.AtomicAdd(lane, 10, 1u);
+    buffer.Store(lane, static_cast<std::size_t>(lane.threadId.x), 1u);
+  });
+  EXPECT_EQ(r.resources[0].storesDroppedOob, 3u * 4);
+  EXPECT_EQ(r.resources[0].bytesWritten, 3u * 4);
+  EXPECT_EQ(r.resources[1].storesDroppedOob, 3u * 2);
+  EXPECT_EQ(r.resources[1].bytesWritten, 3u * 4);
+  EXPECT_EQ(r.resources[1].atomics, 0u);
+  float sum = 0.0f;
+  for (const float t : target.Texels()) sum += t;
+  EXPECT_EQ(sum, 3.0f);
+  EXPECT_EQ(cells.At(0) + cells.At(1) + cells.At(2), 3u);
+
+  // Helper lanes' stores are dropped by the helper rule, not counted as out of range: a 7x5
+  // target runs helper lanes at x = 7 and y = 5.
+  Texture2D<float> odd("odd", 7, 5, 4, 0.0f);
+  Dispatch pixels("test/oob-helpers", SmallKernel());
+  const RwTextureView<float> oddOut = pixels.ReadWrite(odd);
+  const DispatchReport p = machine.FullScreen(pixels, {.width = 7, .height = 5}, [&](PixelLane& lane) {
+    oddOut.Store(lane, lane.x, lane.y, 1.0f);
+  });
+  EXPECT_GT(p.lanes.lanesHelper, 0u);
+  EXPECT_EQ(p.resources[0].storesDroppedOob, 0u);
+}
+
 TEST(SimDispatch, AppendOverflowIsCountedNotLost) {
   Machine machine = TestMachine();
   AppendBuffer<std::uint32_t> queue("small", 10);
