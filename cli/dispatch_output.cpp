@@ -175,7 +175,7 @@ nlohmann::ordered_json HistogramsJson(const sim::LaneCounters& lanes) {
 }
 
 nlohmann::ordered_json ResourceJson(const sim::ResourceTraffic& traffic) {
-  nlohmann::ordered_json json = {{"name", traffic.name}, {"access", traffic.access}};
+  nlohmann::ordered_json json = {{"name", traffic.name}, {"access", sim::AccessName(traffic.access)}};
   for (const TrafficField& field : kRequestFields) json[field.name] = traffic.*field.member;
   for (const TrafficField& field : kLineFields) json[field.name] = traffic.*field.member;
   json[kDramBytes] = traffic.DramBytes();

@@ -29,10 +29,12 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "sim/lanes.h"
 #include "sim/resources.h"
+#include "sim/views.h"
 
 namespace sim {
 
@@ -117,7 +119,7 @@ struct StagedSlotStore {
 inline void CheckSlotElement(const LaneBase& lane, const std::string& counter, std::uint32_t count,
                              std::uint32_t element) {
   if (element >= count) {
-    throw KernelError(*lane.chunk->dispatchName + ": element " + std::to_string(element) + " of a slot of " +
+    throw KernelError(lane.chunk->dispatch->name + ": element " + std::to_string(element) + " of a slot of " +
                       std::to_string(count) + " from '" + counter + "'");
   }
 }
@@ -162,8 +164,8 @@ void CommitSlotStores(Buffer<T>& buffer, std::span<const std::byte> staged,
 // Reserves slots from a SlotCounter bound to a dispatch (Dispatch::Slots).
 class SlotCounterView {
  public:
-  SlotCounterView(SlotCounter& counter, int counterIndex, int slot)
-      : counter_(&counter), counterIndex_(counterIndex), slot_(slot) {}
+  SlotCounterView(SlotCounter& counter, int counterIndex, ViewBinding binding)
+      : counter_(&counter), counterIndex_(counterIndex), binding_(std::move(binding)) {}
 
   // idx = atomicAdd(counter[end], count): one atomic on the counter. Helper lanes reserve
   // nothing (their atomics are dropped, hw-facts §6.1).
@@ -177,7 +179,7 @@ class SlotCounterView {
       slot.dropped_ = true;
       return slot;
     }
-    ++lane.chunk->traffic[static_cast<std::size_t>(slot_)].atomics;
+    ++detail::Traffic(lane, binding_).atomics;
     counter_->Counters().TouchWrite(SlotCounter::Element(end) * 4, 4);
     if (lane.chunk->serial) {
       const std::optional<std::uint32_t> first = counter_->Grant(end, count);
@@ -196,6 +198,7 @@ class SlotCounterView {
   // reservation was refused or made by a helper lane. Known only where chunks run serially: a
   // KernelError elsewhere.
   std::optional<std::size_t> Index(const LaneBase& lane, const QueueSlot& slot, std::uint32_t element = 0) const {
+    detail::CheckOrigin(lane, binding_);
     detail::RequireSerialChunks(lane, "a slot's index");
     detail::CheckSlotElement(lane, slot.counter_->Name(), slot.count_, element);
     if (slot.dropped_ || slot.ordinal_ == detail::kSlotRefused) return std::nullopt;
@@ -204,7 +207,8 @@ class SlotCounterView {
 
  private:
   SlotCounter* counter_;
-  int counterIndex_, slot_;
+  int counterIndex_;
+  ViewBinding binding_;
 };
 
 // Stores into slots reserved in the same dispatch (Dispatch::SlotWrite). Stores are staged and
@@ -213,12 +217,14 @@ class SlotCounterView {
 template <typename T>
 class SlotView {
  public:
-  SlotView(Buffer<T>& buffer, int slot, int stagingIndex) : buffer_(&buffer), slot_(slot), stagingIndex_(stagingIndex) {}
+  SlotView(Buffer<T>& buffer, ViewBinding binding, int stagingIndex)
+      : buffer_(&buffer), binding_(std::move(binding)), stagingIndex_(stagingIndex) {}
 
   std::size_t Size() const { return buffer_->Size(); }
   // buffer[idx + element] for a front slot, buffer[idx - element] for a back slot.
   void Store(const LaneBase& lane, const QueueSlot& slot, const T& value, std::uint32_t element = 0) const {
     static_assert(std::is_trivially_copyable_v<T>);
+    detail::CheckOrigin(lane, binding_);
     detail::CheckSlotElement(lane, slot.counter_->Name(), slot.count_, element);
     if (lane.helper || slot.dropped_) return;
     if (slot.granted_) {
@@ -239,7 +245,7 @@ class SlotView {
     const std::size_t index = slot.ordinal_ == detail::kSlotRefused
                                   ? buffer_->Size()
                                   : slot.counter_->Index(slot.end_, slot.ordinal_ + element);
-    ResourceTraffic& traffic = lane.chunk->traffic[static_cast<std::size_t>(slot_)];
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     if (index >= buffer_->Size()) {
       ++traffic.storesDroppedOob;
       return;
@@ -251,7 +257,8 @@ class SlotView {
   }
 
   Buffer<T>* buffer_;
-  int slot_, stagingIndex_;
+  ViewBinding binding_;
+  int stagingIndex_;
 };
 
 }  // namespace sim

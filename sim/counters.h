@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "sim/wave.h"
 
@@ -105,11 +106,49 @@ inline void LaneCounters::CountLane(LaneKind kind) {
   }
 }
 
+// How a dispatch binds a resource, one bit per mode. A resource bound in several modes is one
+// binding holding their union (its lines are counted once).
+enum class Access : std::uint16_t {
+  None = 0,
+  Read = 1 << 0,
+  Write = 1 << 1,
+  ReadWrite = Read | Write,
+  Append = 1 << 2,          // an append buffer's items
+  AppendCounter = 1 << 3,   // its hidden counter
+  IndirectArgs = 1 << 4,    // group counts the command processor reads
+  StencilExport = 1 << 5,   // a pixel kernel's stencil export
+  StencilTest = 1 << 6,     // the DB's per-pixel stencil test
+  SlotCounter = 1 << 7,     // sim/atomics.h
+  SlotWrite = 1 << 8,
+};
+
+constexpr Access operator|(Access a, Access b) {
+  return static_cast<Access>(static_cast<std::uint16_t>(a) | static_cast<std::uint16_t>(b));
+}
+
+// The name reports print: a single mode's own name, and "read-write" for read + write and for
+// any other mix (the names reports have always used).
+constexpr std::string_view AccessName(Access access) {
+  switch (access) {
+    case Access::None: return "none";
+    case Access::Read: return "read";
+    case Access::Write: return "write";
+    case Access::Append: return "append";
+    case Access::AppendCounter: return "append-counter";
+    case Access::IndirectArgs: return "indirect-args";
+    case Access::StencilExport: return "stencil";
+    case Access::StencilTest: return "stencil-test";
+    case Access::SlotCounter: return "slot-counter";
+    case Access::SlotWrite: return "slot-write";
+    default: return "read-write";
+  }
+}
+
 // Traffic of one bound resource in one dispatch: what lanes asked for, and the distinct
 // 64-byte lines behind it (the compulsory DRAM traffic, before any cache reuse across dispatches).
 struct ResourceTraffic {
   std::string name;
-  std::string access;  // "read", "read-write", "append", "indirect-args", "stencil"
+  Access access = Access::None;
   std::uint64_t bytesRead = 0;
   std::uint64_t bytesWritten = 0;
   std::uint64_t fetches = 0;  // load/sample instructions per lane (a bilinear sample is one)

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -46,22 +47,22 @@ struct KernelInfo {
 
 class Dispatch {
  public:
-  Dispatch(std::string name, KernelInfo kernel) : name_(std::move(name)), kernel_(kernel) {}
+  Dispatch(std::string name, KernelInfo kernel);
 
-  const std::string& Name() const { return name_; }
+  const std::string& Name() const { return identity_->name; }
   const KernelInfo& Kernel() const { return kernel_; }
 
   template <typename T>
-  TextureView<T> Read(const Texture2D<T>& texture) { return {texture, Bind(texture, "read")}; }
+  TextureView<T> Read(const Texture2D<T>& texture) { return {texture, View(Bind(texture, Access::Read))}; }
   template <typename T>
-  RwTextureView<T> ReadWrite(Texture2D<T>& texture) { return {texture, Bind(texture, "read-write")}; }
+  RwTextureView<T> ReadWrite(Texture2D<T>& texture) { return {texture, View(Bind(texture, Access::ReadWrite))}; }
   template <typename T>
-  BufferView<T> Read(const Buffer<T>& buffer) { return {buffer, Bind(buffer, "read")}; }
+  BufferView<T> Read(const Buffer<T>& buffer) { return {buffer, View(Bind(buffer, Access::Read))}; }
   template <typename T>
-  RwBufferView<T> ReadWrite(Buffer<T>& buffer) { return {buffer, Bind(buffer, "read-write")}; }
+  RwBufferView<T> ReadWrite(Buffer<T>& buffer) { return {buffer, View(Bind(buffer, Access::ReadWrite))}; }
   template <typename T>
   AppendView<T> Append(AppendBuffer<T>& buffer);
-  StencilView Stencil(StencilBuffer& stencil) { return {stencil, Bind(stencil, "stencil")}; }
+  StencilView Stencil(StencilBuffer& stencil) { return {stencil, View(Bind(stencil, Access::StencilExport))}; }
   // Slot reservations from `counter`, and stores into the reserved slots of `buffer`
   // (sim/atomics.h).
   SlotCounterView Slots(SlotCounter& counter);
@@ -80,7 +81,7 @@ class Dispatch {
   friend class Machine;
   struct Binding {
     const Resource* resource;
-    std::string access;
+    Access access;
   };
   struct AppendTarget {
     std::size_t elementSize;
@@ -97,9 +98,10 @@ class Dispatch {
     std::function<void(std::span<const std::byte>, std::span<const std::vector<std::uint32_t>>, ResourceTraffic&)>
         commit;
   };
-  int Bind(const Resource& resource, std::string access);
+  int Bind(const Resource& resource, Access access);
+  ViewBinding View(int slot) const { return {slot, identity_}; }
 
-  std::string name_;
+  std::shared_ptr<const DispatchIdentity> identity_;
   KernelInfo kernel_;
   std::vector<Binding> bindings_;
   std::vector<AppendTarget> appends_;

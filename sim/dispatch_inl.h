@@ -18,8 +18,8 @@ namespace sim {
 
 template <typename T>
 AppendView<T> Dispatch::Append(AppendBuffer<T>& buffer) {
-  const int items = Bind(buffer.Storage(), "append");
-  const int counter = Bind(buffer.Counter(), "append-counter");
+  const int items = Bind(buffer.Storage(), Access::Append);
+  const int counter = Bind(buffer.Counter(), Access::AppendCounter);
   const int staging = static_cast<int>(appends_.size());
   appends_.push_back({sizeof(T), [&buffer](std::span<const std::byte> staged) -> std::uint64_t {
                         Buffer<T>& storage = buffer.Storage();
@@ -38,19 +38,19 @@ AppendView<T> Dispatch::Append(AppendBuffer<T>& buffer) {
                         if (!staged.empty()) buffer.Counter().TouchWrite(0, 4);
                         return overflow;
                       }});
-  return {items, counter, staging, buffer.Storage().ElementBytes()};
+  return {View(items), counter, staging, buffer.Storage().ElementBytes()};
 }
 
 template <typename T>
 SlotView<T> Dispatch::SlotWrite(Buffer<T>& buffer) {
-  const int slot = Bind(buffer, "slot-write");
+  const int slot = Bind(buffer, Access::SlotWrite);
   const int staging = static_cast<int>(slotStores_.size());
   slotStores_.push_back({slot, [&buffer](std::span<const std::byte> staged,
                                          std::span<const std::vector<std::uint32_t>> granted,
                                          ResourceTraffic& traffic) {
                            detail::CommitSlotStores(buffer, staged, granted, traffic);
                          }});
-  return {buffer, slot, staging};
+  return {buffer, View(slot), staging};
 }
 
 namespace detail {
@@ -104,7 +104,7 @@ DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& cal
   targets.height = call.height;
   targets.flush = call.flush;
   targets.stencil = call.stencil;
-  if (call.stencil != nullptr) targets.stencilSlot = dispatch.Bind(*call.stencil, "stencil-test");
+  if (call.stencil != nullptr) targets.stencilSlot = dispatch.Bind(*call.stencil, Access::StencilTest);
   const raster::RasterResult& result = RasterizeFullScreen(call, dispatch);
   DispatchReport report;
   report.kind = DispatchKind::FullScreen;

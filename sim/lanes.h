@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,13 @@ class KernelError : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
+// The dispatch a view was created by. Views share ownership of it, so a view used after its
+// Dispatch is gone still names it, and its address cannot be reused by a later dispatch.
+struct DispatchIdentity {
+  std::uint64_t serial;  // 1, 2, ... in creation order, per process
+  std::string name;
+};
+
 // Which end of a slot range a reservation takes from (sim/atomics.h).
 enum class End : std::uint8_t { Front, Back };
 
@@ -47,7 +55,7 @@ struct SlotReservation {
 // accumulate; chunks are merged in order after the dispatch, so results do not depend on which
 // host thread ran which chunk.
 struct ChunkState {
-  const std::string* dispatchName = nullptr;
+  const DispatchIdentity* dispatch = nullptr;
   std::vector<ResourceTraffic> traffic;          // per binding
   std::vector<std::vector<std::byte>> appends;   // per append binding, staged items
   std::vector<std::vector<SlotReservation>> reservations;  // per slot counter, in lane order
@@ -84,12 +92,25 @@ struct LaneBase {
   detail::ChunkState* chunk = nullptr;
 };
 
+// What a view counts into: its binding slot in the dispatch that created it, and that dispatch.
+struct ViewBinding {
+  int slot = -1;
+  std::shared_ptr<const DispatchIdentity> origin;
+};
+
 namespace detail {
+// A view from another dispatch (created for an earlier Dispatch and captured by a later kernel)
+// would count into the wrong binding: a KernelError naming both dispatches.
+[[noreturn]] void StaleView(const LaneBase& lane, const DispatchIdentity& origin);
+inline void CheckOrigin(const LaneBase& lane, const ViewBinding& binding) {
+  if (binding.origin.get() != lane.chunk->dispatch) [[unlikely]] StaleView(lane, *binding.origin);
+}
+
 // Refuses an operation whose result depends on the order in which lanes of different chunks run,
 // unless the chunks run serially.
 inline void RequireSerialChunks(const LaneBase& lane, const char* what) {
   if (lane.chunk->serial) return;
-  throw KernelError(*lane.chunk->dispatchName + ": " + what +
+  throw KernelError(lane.chunk->dispatch->name + ": " + what +
                     " depends on the order lanes run in; call Dispatch::SerialChunks() so the dispatch runs its "
                     "chunks one after another (slower, but deterministic)");
 }

@@ -2,6 +2,8 @@
 // triangle, indirect arguments, per-group lane counting, and merging chunks into a report.
 
 #include <array>
+#include <atomic>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -20,7 +22,7 @@ std::array<float, 3> PixelLane::CentroidBarycentrics() const {
 
 std::byte* ComputeLane::LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
   if (byteOffset + bytes > chunk->lds.size()) {
-    throw KernelError(*chunk->dispatchName + ": LDS access at byte " + std::to_string(byteOffset) +
+    throw KernelError(chunk->dispatch->name + ": LDS access at byte " + std::to_string(byteOffset) +
                       " beyond the declared " + std::to_string(chunk->lds.size()) + " bytes");
   }
   return chunk->lds.data() + byteOffset;
@@ -32,9 +34,16 @@ std::byte* detail::ChunkState::PrivateAt(const void* type, std::size_t size, int
     privateStride = size;
     privates.assign(privateStride * static_cast<std::size_t>(groupThreads), std::byte{0});
   } else if (privateType != type) {
-    throw KernelError(*dispatchName + ": Private<T>() with two different types; one dispatch keeps one T per thread");
+    throw KernelError(dispatch->name + ": Private<T>() with two different types; one dispatch keeps one T per thread");
   }
   return privates.data() + privateStride * static_cast<std::size_t>(thread);
+}
+
+void detail::StaleView(const LaneBase& lane, const DispatchIdentity& origin) {
+  const DispatchIdentity& running = *lane.chunk->dispatch;
+  throw KernelError(running.name + ": a view created by dispatch '" + origin.name + "' (#" +
+                    std::to_string(origin.serial) + ") is used by dispatch '" + running.name + "' (#" +
+                    std::to_string(running.serial) + "); create a kernel's views from the Dispatch it runs under");
 }
 
 std::uint64_t DispatchReport::DramBytes() const {
@@ -51,31 +60,36 @@ bool DispatchReport::SameSimulation(const DispatchReport& other) const {
          fragments == other.fragments;
 }
 
-int Dispatch::Bind(const Resource& resource, std::string access) {
+Dispatch::Dispatch(std::string name, KernelInfo kernel) : kernel_(kernel) {
+  static std::atomic<std::uint64_t> lastSerial{0};
+  identity_ = std::make_shared<const DispatchIdentity>(DispatchIdentity{++lastSerial, std::move(name)});
+}
+
+int Dispatch::Bind(const Resource& resource, Access access) {
   for (std::size_t slot = 0; slot < bindings_.size(); ++slot) {
     if (bindings_[slot].resource != &resource) continue;
     // One resource bound twice is one binding, so its lines are counted once.
-    if (bindings_[slot].access != access) bindings_[slot].access = "read-write";
+    bindings_[slot].access = bindings_[slot].access | access;
     return static_cast<int>(slot);
   }
-  bindings_.push_back({&resource, std::move(access)});
+  bindings_.push_back({&resource, access});
   return static_cast<int>(bindings_.size() - 1);
 }
 
 SlotCounterView Dispatch::Slots(SlotCounter& counter) {
   for (std::size_t i = 0; i < slotCounters_.size(); ++i) {
-    if (slotCounters_[i].counter == &counter) return {counter, static_cast<int>(i), slotCounters_[i].slot};
+    if (slotCounters_[i].counter == &counter) return {counter, static_cast<int>(i), View(slotCounters_[i].slot)};
   }
-  const int slot = Bind(counter.Counters(), "slot-counter");
+  const int slot = Bind(counter.Counters(), Access::SlotCounter);
   slotCounters_.push_back({&counter, slot});
-  return {counter, static_cast<int>(slotCounters_.size() - 1), slot};
+  return {counter, static_cast<int>(slotCounters_.size() - 1), View(slot)};
 }
 
 std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::size_t count, TileHeatMap* heat) const {
   for (const Dispatch::Binding& binding : dispatch.bindings_) const_cast<Resource*>(binding.resource)->BeginDispatch();
   std::vector<detail::ChunkState> chunks(std::max<std::size_t>(count, 1));
   for (detail::ChunkState& chunk : chunks) {
-    chunk.dispatchName = &dispatch.name_;
+    chunk.dispatch = dispatch.identity_.get();
     chunk.traffic.resize(dispatch.bindings_.size());
     chunk.appends.resize(dispatch.appends_.size());
     chunk.reservations.resize(dispatch.slotCounters_.size());
@@ -115,7 +129,7 @@ Machine::IndirectLaunch Machine::ReadIndirectArguments(Dispatch& dispatch, const
                                 std::to_string(call.offset));
   }
   IndirectLaunch launch;
-  launch.limits.argumentSlot = dispatch.Bind(*call.arguments, "indirect-args");
+  launch.limits.argumentSlot = dispatch.Bind(*call.arguments, Access::IndirectArgs);
   launch.limits.argumentByte = call.offset * 4;
   for (int axis = 0; axis < 3; ++axis) {
     const std::uint32_t count = call.arguments->At(call.offset + static_cast<std::size_t>(axis));
@@ -133,7 +147,7 @@ Machine::IndirectLaunch Machine::ReadIndirectArguments(Dispatch& dispatch, const
                                   " outside its buffer");
     }
     launch.limits.itemCount = call.itemCount->At(call.itemCountIndex);
-    launch.limits.itemCountSlot = dispatch.Bind(*call.itemCount, "read");
+    launch.limits.itemCountSlot = dispatch.Bind(*call.itemCount, Access::Read);
     launch.limits.itemCountByte = call.itemCountIndex * 4;
   }
   return launch;

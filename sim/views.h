@@ -13,18 +13,28 @@
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
 
 #include "raster/depth_stencil.h"
+#include "sim/check.h"
 #include "sim/lanes.h"
 #include "sim/resources.h"
 
 namespace sim {
 
 namespace detail {
+// The traffic a view counts into, after checking that the view belongs to the running dispatch.
+inline ResourceTraffic& Traffic(const LaneBase& lane, const ViewBinding& binding) {
+  CheckOrigin(lane, binding);
+  AASIM_DCHECK_LT(static_cast<std::size_t>(binding.slot), lane.chunk->traffic.size());
+  return lane.chunk->traffic[static_cast<std::size_t>(binding.slot)];
+}
+// A second binding of a view whose origin Traffic(lane, binding) has checked.
 inline ResourceTraffic& Traffic(const LaneBase& lane, int slot) {
+  AASIM_DCHECK_LT(static_cast<std::size_t>(slot), lane.chunk->traffic.size());
   return lane.chunk->traffic[static_cast<std::size_t>(slot)];
 }
 }  // namespace detail
@@ -35,7 +45,7 @@ enum class AddressMode : std::uint8_t { Clamp, Repeat };
 template <typename T>
 class TextureView {
  public:
-  TextureView(const Texture2D<T>& texture, int slot) : texture_(&texture), slot_(slot) {}
+  TextureView(const Texture2D<T>& texture, ViewBinding binding) : texture_(&texture), binding_(std::move(binding)) {}
 
   int Width() const { return texture_->Width(); }
   int Height() const { return texture_->Height(); }
@@ -73,7 +83,7 @@ class TextureView {
   }
   // One fetch instruction reading `texels` texels (the footprint; touched lines come from Texel).
   void CountFetch(const LaneBase& lane, int texels) const {
-    ResourceTraffic& traffic = detail::Traffic(lane, slot_);
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     ++traffic.fetches;
     traffic.bytesRead += static_cast<std::uint64_t>(texels) * static_cast<std::uint64_t>(texture_->TexelBytes());
   }
@@ -86,25 +96,27 @@ class TextureView {
   }
 
   const Texture2D<T>* texture_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 template <typename T>
 class RwTextureView {
  public:
-  RwTextureView(Texture2D<T>& texture, int slot) : texture_(&texture), read_(texture, slot), slot_(slot) {}
+  RwTextureView(Texture2D<T>& texture, const ViewBinding& binding)
+      : texture_(&texture), read_(texture, binding), binding_(binding) {}
 
   int Width() const { return texture_->Width(); }
   int Height() const { return texture_->Height(); }
   T Load(const LaneBase& lane, int x, int y) const { return read_.Load(lane, x, y); }
   void Store(const LaneBase& lane, int x, int y, const T& value) const {
     if (lane.helper) return;
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     if (!texture_->Contains(x, y)) {
-      ++detail::Traffic(lane, slot_).storesDroppedOob;
+      ++traffic.storesDroppedOob;
       return;
     }
     const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
-    detail::Traffic(lane, slot_).bytesWritten += bytes;
+    traffic.bytesWritten += bytes;
     texture_->TouchWrite(texture_->Index(x, y) * bytes, bytes);
     texture_->At(x, y) = value;
   }
@@ -112,16 +124,16 @@ class RwTextureView {
  private:
   Texture2D<T>* texture_;
   TextureView<T> read_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 template <typename T>
 class BufferView {
  public:
-  BufferView(const Buffer<T>& buffer, int slot) : buffer_(&buffer), slot_(slot) {}
+  BufferView(const Buffer<T>& buffer, ViewBinding binding) : buffer_(&buffer), binding_(std::move(binding)) {}
   std::size_t Size() const { return buffer_->Size(); }
   T Load(const LaneBase& lane, std::size_t index) const {
-    ResourceTraffic& traffic = detail::Traffic(lane, slot_);
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     ++traffic.fetches;
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
     traffic.bytesRead += bytes;
@@ -132,23 +144,25 @@ class BufferView {
 
  private:
   const Buffer<T>* buffer_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 template <typename T>
 class RwBufferView {
  public:
-  RwBufferView(Buffer<T>& buffer, int slot) : buffer_(&buffer), read_(buffer, slot), slot_(slot) {}
+  RwBufferView(Buffer<T>& buffer, const ViewBinding& binding)
+      : buffer_(&buffer), read_(buffer, binding), binding_(binding) {}
   std::size_t Size() const { return buffer_->Size(); }
   T Load(const LaneBase& lane, std::size_t index) const { return read_.Load(lane, index); }
   void Store(const LaneBase& lane, std::size_t index, const T& value) const {
     if (lane.helper) return;
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     if (index >= buffer_->Size()) {
-      ++detail::Traffic(lane, slot_).storesDroppedOob;
+      ++traffic.storesDroppedOob;
       return;
     }
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
-    detail::Traffic(lane, slot_).bytesWritten += bytes;
+    traffic.bytesWritten += bytes;
     buffer_->TouchWrite(index * bytes, bytes);
     buffer_->At(index) = value;
   }
@@ -195,12 +209,13 @@ class RwBufferView {
   T Rmw(const LaneBase& lane, std::size_t index, Op op) const {
     static_assert(std::is_integral_v<T>, "atomics are defined on integer buffers");
     if (lane.helper) return T{};
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     if (index >= buffer_->Size()) {
-      ++detail::Traffic(lane, slot_).storesDroppedOob;
+      ++traffic.storesDroppedOob;
       return T{};
     }
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
-    ++detail::Traffic(lane, slot_).atomics;
+    ++traffic.atomics;
     buffer_->TouchWrite(index * bytes, bytes);
     std::atomic_ref<T> element(buffer_->At(index));
     T old = element.load(std::memory_order_relaxed);
@@ -211,7 +226,7 @@ class RwBufferView {
 
   Buffer<T>* buffer_;
   BufferView<T> read_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 // Append without a returned index (D3D AppendStructuredBuffer::Append). Each append is one
@@ -219,14 +234,14 @@ class RwBufferView {
 template <typename T>
 class AppendView {
  public:
-  AppendView(int itemSlot, int counterSlot, int stagingIndex, int elementBytes)
-      : itemSlot_(itemSlot), counterSlot_(counterSlot), stagingIndex_(stagingIndex), elementBytes_(elementBytes) {}
+  AppendView(ViewBinding items, int counterSlot, int stagingIndex, int elementBytes)
+      : items_(std::move(items)), counterSlot_(counterSlot), stagingIndex_(stagingIndex), elementBytes_(elementBytes) {}
 
   void Append(const LaneBase& lane, const T& value) const {
     static_assert(std::is_trivially_copyable_v<T>);
     if (lane.helper) return;
+    detail::Traffic(lane, items_).bytesWritten += static_cast<std::uint64_t>(elementBytes_);
     ++detail::Traffic(lane, counterSlot_).atomics;
-    detail::Traffic(lane, itemSlot_).bytesWritten += static_cast<std::uint64_t>(elementBytes_);
     std::vector<std::byte>& staging = lane.chunk->appends[static_cast<std::size_t>(stagingIndex_)];
     const std::size_t at = staging.size();
     staging.resize(at + sizeof(T));
@@ -234,7 +249,8 @@ class AppendView {
   }
 
  private:
-  int itemSlot_, counterSlot_, stagingIndex_, elementBytes_;
+  ViewBinding items_;
+  int counterSlot_, stagingIndex_, elementBytes_;
 };
 
 // A stencil target for post passes: a one-sample depth/stencil surface whose per-pixel stencil a
@@ -257,10 +273,10 @@ class StencilBuffer : public Resource {
 // bins own their 8x8 tiles, so hi-stencil refreshes never race.
 class StencilView {
  public:
-  StencilView(StencilBuffer& stencil, int slot) : stencil_(&stencil), slot_(slot) {}
+  StencilView(StencilBuffer& stencil, ViewBinding binding) : stencil_(&stencil), binding_(std::move(binding)) {}
   void Store(const PixelLane& lane, std::uint8_t value) const {
     if (lane.helper || lane.x >= stencil_->Width() || lane.y >= stencil_->Height()) return;
-    detail::Traffic(lane, slot_).bytesWritten += 1;
+    detail::Traffic(lane, binding_).bytesWritten += 1;
     stencil_->TouchWrite(static_cast<std::size_t>(lane.y) * static_cast<std::size_t>(stencil_->Width()) +
                              static_cast<std::size_t>(lane.x),
                          1);
@@ -269,7 +285,7 @@ class StencilView {
 
  private:
   StencilBuffer* stencil_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 }  // namespace sim

@@ -351,9 +351,9 @@ sim::DispatchReport HandBuiltReport() {
   report.lanes.lanesDeadEmpty = 84;
   report.lanes.wavesByActiveLanes[50] = 6;
   sim::ResourceTraffic colour{
-      .name = "colour", .access = "read", .bytesRead = 1200, .fetches = 300, .linesRead = 20};
+      .name = "colour", .access = sim::Access::Read, .bytesRead = 1200, .fetches = 300, .linesRead = 20};
   sim::ResourceTraffic queue{
-      .name = "queue", .access = "append", .bytesWritten = 40, .atomics = 10, .storesDroppedOob = 3,
+      .name = "queue", .access = sim::Access::Append, .bytesWritten = 40, .atomics = 10, .storesDroppedOob = 3,
       .linesWritten = 1};
   report.resources = {colour, queue};
   report.occupancy = {.wavesPerSimd = 8,
@@ -410,6 +410,8 @@ TEST(CliFrameDispatchOutput, JsonFollowsTheSchemaAndTheFieldTables) {
   ASSERT_EQ(d["resources"].size(), 2u);
   EXPECT_EQ(d["resources"][0]["name"], "colour");
   EXPECT_EQ(d["resources"][0]["dram_bytes"], 20 * 64);
+  EXPECT_EQ(d["resources"][0]["access"], "read");
+  EXPECT_EQ(d["resources"][1]["access"], "append");
   EXPECT_EQ(d["resources"][1]["atomics"], 10);
   EXPECT_EQ(d["resources"][1]["stores_dropped_oob"], 3);
   EXPECT_EQ(d["occupancy"]["waves_per_simd"], 8);

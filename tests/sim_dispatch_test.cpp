@@ -6,6 +6,12 @@
 
 #include <tbb/global_control.h>
 
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
 #include "raster_test_util.h"
 #include "sim/dispatch.h"
 #include "sim_test_util.h"
@@ -350,6 +356,85 @@ TEST(SimDispatch, OutOfRangeUavStoresAreDroppedAndCountedPerResource) {
   });
   EXPECT_GT(p.lanes.lanesHelper, 0u);
   EXPECT_EQ(p.resources[0].storesDroppedOob, 0u);
+}
+
+TEST(SimDispatch, AViewFromAnEarlierDispatchIsAKernelErrorNamingBoth) {
+  // Kernel rule violations are sim::KernelError (as an LDS overrun): catchable by the CLI, which
+  // reports the message and exits, and by tests. Aborting is for aasim's own invariants.
+  Machine machine = TestMachine();
+  Buffer<std::uint32_t> cells("cells", 4, 4, 0);
+  std::optional<RwBufferView<std::uint32_t>> stale;
+  {
+    Dispatch first("test/first", SmallKernel());
+    stale.emplace(first.ReadWrite(cells));
+    machine.Compute(first, {.threads = {1, 1, 1}}, [&](ComputeLane& lane) { stale->Store(lane, 0, 1u); });
+  }
+  Dispatch second("test/second", SmallKernel());
+  const RwBufferView<std::uint32_t> mine = second.ReadWrite(cells);
+  try {
+    machine.Compute(second, {.threads = {1, 1, 1}}, [&](ComputeLane& lane) {
+      mine.Store(lane, 1, 1u);
+      stale->Store(lane, 0, 2u);
+    });
+    FAIL() << "expected a KernelError";
+  } catch (const KernelError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("'test/first'"), std::string::npos) << message;
+    EXPECT_NE(message.find("'test/second'"), std::string::npos) << message;
+  }
+  EXPECT_EQ(cells.At(0), 1u);  // the stale store never landed
+
+  // Reading through a stale texture view in a pixel kernel is caught too.
+  Texture2D<float> texture("texture", 8, 8, 4, 0.0f);
+  std::optional<TextureView<float>> staleTexture;
+  {
+    Dispatch first("test/first-pixels", SmallKernel());
+    staleTexture.emplace(first.Read(texture));
+  }
+  Dispatch third("test/third", SmallKernel());
+  EXPECT_THROW(machine.FullScreen(third, {.width = 8, .height = 8},
+                                  [&](PixelLane& lane) { staleTexture->Load(lane, lane.x, lane.y); }),
+               KernelError);
+}
+
+// Reports print a binding's access modes under the names they always had.
+TEST(SimDispatch, AccessModesKeepTheirReportedNames) {
+  Machine machine = TestMachine();
+  auto names = [](const DispatchReport& r) {
+    std::vector<std::pair<std::string, std::string_view>> out;
+    for (const ResourceTraffic& t : r.resources) out.emplace_back(t.name, AccessName(t.access));
+    return out;
+  };
+  using Names = std::vector<std::pair<std::string, std::string_view>>;
+  Texture2D<float> in("in", 8, 8), out("out", 8, 8);
+  Buffer<std::uint32_t> both("both", 4), slotItems("slot-items", 4), args("args", 3, 4, 1);
+  AppendBuffer<std::uint32_t> queue("queue", 4);
+  SlotCounter counter("slots", 4);
+  Dispatch d("test/access", SmallKernel());
+  d.Read(in);
+  d.ReadWrite(out);
+  d.Append(queue);
+  d.Read(both);
+  d.ReadWrite(both);
+  d.Slots(counter);
+  d.SlotWrite(slotItems);
+  EXPECT_EQ(names(machine.Compute(d, {.threads = {1, 1, 1}}, [](ComputeLane&) {})),
+            (Names{{"in", "read"},
+                   {"out", "read-write"},
+                   {"queue", "append"},
+                   {"queue/counter", "append-counter"},
+                   {"both", "read-write"},
+                   {"slots", "slot-counter"},
+                   {"slot-items", "slot-write"}}));
+  Dispatch indirect("test/access-indirect", SmallKernel());
+  EXPECT_EQ(names(machine.ComputeIndirect(indirect, {.arguments = &args, .itemCount = &queue.Counter()},
+                                          [](ComputeLane&) {})),
+            (Names{{"args", "indirect-args"}, {"queue/counter", "read"}}));
+  StencilBuffer exported("exported", 8, 8), tested("tested", 8, 8);
+  Dispatch pixels("test/access-stencil", SmallKernel());
+  pixels.Stencil(exported);
+  EXPECT_EQ(names(machine.FullScreen(pixels, {.width = 8, .height = 8, .stencil = &tested}, [](PixelLane&) {})),
+            (Names{{"exported", "stencil"}, {"tested", "stencil-test"}}));
 }
 
 TEST(SimDispatch, AppendOverflowIsCountedNotLost) {
