@@ -171,12 +171,14 @@ class Machine {
 
   const GpuConfig& Gpu() const { return gpu_; }
 
-  // kernel(PixelLane&) -> fmask::Colour, the colour export of active lanes.
-  template <typename Kernel>
-  DispatchReport Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& kernel);
-  // kernel(PixelLane&) -> void.
-  template <typename Kernel>
-  DispatchReport FullScreen(Dispatch& dispatch, const FullScreenCall& call, Kernel&& kernel);
+  // Pixel kernels are one or more stages, each stage(PixelLane&); every lane of a wave finishes a
+  // stage before the next starts, so a later stage can take derivatives of values the quad
+  // computed earlier (PixelLane::Ddx). Draw: the last stage returns the fmask::Colour export of
+  // active lanes, earlier stages return void. FullScreen: every stage returns void.
+  template <typename... Stages>
+  DispatchReport Draw(Dispatch& dispatch, const DrawCall& call, Stages&&... stages);
+  template <typename... Stages>
+  DispatchReport FullScreen(Dispatch& dispatch, const FullScreenCall& call, Stages&&... stages);
   // Each stage is kernel(ComputeLane&) -> void; a group barrier separates consecutive stages.
   template <typename... Stages>
   DispatchReport Compute(Dispatch& dispatch, const ComputeGrid& grid, Stages&&... stages);
@@ -224,9 +226,15 @@ class Machine {
     const StencilBuffer* stencil = nullptr;   // FullScreen: the buffer the DB tests per pixel
     int stencilSlot = -1;
   };
-  template <typename Kernel>
+  template <typename... Stages>
   void RunPixelWaves(Dispatch& dispatch, DispatchReport report, const raster::RasterResult& result,
-                                      const PixelTargets& targets, Kernel& kernel);
+                                      const PixelTargets& targets, Stages&... stages);
+  // Classifies every lane of a pixel wave and sets all of them up before any runs (a kernel reads
+  // its quad neighbours), counting lanes, heat and the wave; returns the wave's EXEC mask.
+  static std::uint64_t SetUpPixelWave(detail::ChunkState& chunk, std::span<const raster::QuadFragment> quads,
+                                      std::span<const std::uint32_t> waveQuads, const raster::RasterResult& result,
+                                      const PixelTargets& targets, DispatchKind kind,
+                                      std::array<PixelLane, kWaveLanes>& lanes);
   static void CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
                                 const PixelTargets& targets);
   template <typename... Stages>

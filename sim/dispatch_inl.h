@@ -7,8 +7,11 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 
@@ -69,8 +72,8 @@ inline double MillisecondsSince(std::chrono::steady_clock::time_point start) {
 }
 }  // namespace detail
 
-template <typename Kernel>
-DispatchReport Machine::Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& kernel) {
+template <typename... Stages>
+DispatchReport Machine::Draw(Dispatch& dispatch, const DrawCall& call, Stages&&... stages) {
   const auto start = std::chrono::steady_clock::now();
   if (call.depth == nullptr) throw std::invalid_argument(dispatch.Name() + ": a draw needs a depth/stencil surface");
   const raster::DepthSurfaceConfig& depth = call.depth->Config();
@@ -90,13 +93,13 @@ DispatchReport Machine::Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& 
   targets.height = depth.height;
   targets.flush = call.flush;
   targets.colour = call.colour;
-  RunPixelWaves(dispatch, std::move(report), result, targets, kernel);
+  RunPixelWaves(dispatch, std::move(report), result, targets, stages...);
   reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
   return reports_.back();
 }
 
-template <typename Kernel>
-DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& call, Kernel&& kernel) {
+template <typename... Stages>
+DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& call, Stages&&... stages) {
   const auto start = std::chrono::steady_clock::now();
   ValidateKernel(dispatch, kWaveLanes);
   PixelTargets targets;
@@ -111,18 +114,30 @@ DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& cal
   report.raster = result.counters;
   report.lanes.tilesHiStencilCulled = result.counters.tilesHiStencilRejected;
   targets.pattern = call.stencil != nullptr ? &call.stencil->Surface().Pattern() : &fullScreenSurface_->Pattern();
-  RunPixelWaves(dispatch, std::move(report), result, targets, kernel);
+  RunPixelWaves(dispatch, std::move(report), result, targets, stages...);
   reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
   return reports_.back();
 }
 
-template <typename Kernel>
+namespace detail {
+template <typename Stage>
+using PixelExport = std::invoke_result_t<Stage&, PixelLane&>;
+
+template <typename... Stages, std::size_t... Earlier>
+constexpr bool OnlyTheLastStageExports(std::index_sequence<Earlier...>) {
+  using Last = std::tuple_element_t<sizeof...(Stages) - 1, std::tuple<Stages...>>;
+  return (std::is_void_v<PixelExport<std::tuple_element_t<Earlier, std::tuple<Stages...>>>> && ...) &&
+         (std::is_void_v<PixelExport<Last>> || std::is_same_v<PixelExport<Last>, fmask::Colour>);
+}
+}  // namespace detail
+
+template <typename... Stages>
 void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
                                              const raster::RasterResult& result, const PixelTargets& targets,
-                                             Kernel& kernel) {
-  using Export = std::invoke_result_t<Kernel&, PixelLane&>;
-  static_assert(std::is_void_v<Export> || std::is_same_v<Export, fmask::Colour>,
-                "a pixel kernel returns void or its fmask::Colour export");
+                                             Stages&... stages) {
+  static_assert(sizeof...(Stages) >= 1, "a pixel kernel has at least one stage");
+  static_assert(detail::OnlyTheLastStageExports<Stages...>(std::make_index_sequence<sizeof...(Stages) - 1>{}),
+                "earlier stages of a pixel kernel return void; the last returns void or its fmask::Colour export");
   const std::size_t bins = result.quadsByBin.size();
   fmask::EqaaSurface* const colour = targets.colour;
   report.heat = TileHeatMap(targets.width, targets.height);
@@ -135,67 +150,39 @@ void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
   const DispatchKind kind = report.kind;
   detail::ForEachChunk(bins, dispatch.serialChunks_, [&](std::size_t bin) {
     detail::ChunkState& chunk = chunks[bin];
+    chunk.groupThreads = kWaveLanes;  // Private<T>() keeps one T per lane of the wave
     const std::vector<raster::QuadFragment>& quads = result.quadsByBin[bin];
     PackedWaves packed;
     if (targets.stencil != nullptr) {
       for (const raster::QuadFragment& quad : quads) CountStencilReads(chunk, quad, targets);
     }
     PackPixelWaves(quads, targets.flush, packed, chunk.lanes);
+    std::array<PixelLane, kWaveLanes> lanes;
     for (std::size_t wave = 0; wave < packed.WaveCount(); ++wave) {
-      const std::uint32_t first = packed.waveStarts[wave], last = packed.waveStarts[wave + 1];
-      // First pass: every lane's kind and the wave's EXEC mask, before any lane runs, so a kernel
-      // reading a quad neighbour's helper flag or the mask sees the final value, as on the
-      // hardware where EXEC is set before the shader starts (hw-facts §6.1).
-      std::array<LaneKind, kWaveLanes> kinds{};
-      std::uint64_t exec = 0;
-      int active = 0;
-      for (std::uint32_t k = first; k < last; ++k) {
-        const raster::QuadFragment& quad = quads[packed.quads[k]];
-        for (int p = 0; p < raster::kQuadPixels; ++p) {
-          const int laneIndex = static_cast<int>(k - first) * raster::kQuadPixels + p;
-          const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
-          kinds[static_cast<std::size_t>(laneIndex)] = laneKind;
-          chunk.lanes.CountLane(laneKind);
-          chunk.heat->Add(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
-          const bool runs = laneKind == LaneKind::Active || laneKind == LaneKind::Helper;
-          exec |= static_cast<std::uint64_t>(runs) << laneIndex;
-          active += laneKind == LaneKind::Active;
-        }
-      }
-      for (std::uint32_t k = first; k < last; ++k) {
-        const std::uint32_t quadIndex = packed.quads[k];
-        const raster::QuadFragment& quad = quads[quadIndex];
-        // The whole quad is set up before any of its lanes runs: derivatives read neighbours.
-        std::array<PixelLane, raster::kQuadPixels> lanes;
-        for (int p = 0; p < raster::kQuadPixels; ++p) {
-          PixelLane& lane = lanes[static_cast<std::size_t>(p)];
-          lane.lane = static_cast<int>(k - first) * raster::kQuadPixels + p;
-          lane.helper = kinds[static_cast<std::size_t>(lane.lane)] == LaneKind::Helper;
-          lane.exec = exec;
-          lane.chunk = &chunk;
-          lane.x = quad.x + (p & 1);
-          lane.y = quad.y + (p >> 1);
-          lane.quadPixel = p;
-          lane.quadInWave = static_cast<int>(k - first);
-          lane.quad = &quad;
-          lane.triangle = kind == DispatchKind::Draw ? &result.triangles[quad.setupIndex] : nullptr;
-          lane.pattern = targets.pattern;
-          lane.quadLanes = &lanes;
-        }
-        for (int p = 0; p < raster::kQuadPixels; ++p) {
-          PixelLane& lane = lanes[static_cast<std::size_t>(p)];
-          if (((exec >> lane.lane) & 1U) == 0) continue;
-          if constexpr (std::is_void_v<Export>) {
-            kernel(lane);
+      const std::span<const std::uint32_t> waveQuads(packed.quads.data() + packed.waveStarts[wave],
+                                                     packed.waveStarts[wave + 1] - packed.waveStarts[wave]);
+      const std::uint64_t exec = SetUpPixelWave(chunk, quads, waveQuads, result, targets, kind, lanes);
+      std::fill(chunk.privates.begin(), chunk.privates.end(), std::byte{0});
+      const int laneCount = static_cast<int>(waveQuads.size()) * raster::kQuadPixels;
+      // Every running lane finishes a stage before the next starts: a wave's lanes run in
+      // lockstep, so a stage boundary is where quad neighbours' values can be exchanged. Only
+      // the last stage can export (static_assert above).
+      auto runStage = [&](auto& stage) {
+        for (int i = 0; i < laneCount; ++i) {
+          PixelLane& lane = lanes[static_cast<std::size_t>(i)];
+          if (((exec >> i) & 1U) == 0) continue;
+          if constexpr (std::is_void_v<detail::PixelExport<decltype(stage)>>) {
+            stage(lane);
           } else {
-            const fmask::Colour exported = kernel(lane);
-            if (colour != nullptr && !lane.helper) shaded_[bin][quadIndex][static_cast<std::size_t>(p)] = exported;
+            const fmask::Colour exported = stage(lane);
+            if (colour != nullptr && !lane.helper) {
+              shaded_[bin][waveQuads[static_cast<std::size_t>(lane.quadInWave)]][static_cast<std::size_t>(lane.quadPixel)] =
+                  exported;
+            }
           }
         }
-      }
-      chunk.lanes.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes) - (last - first) * raster::kQuadPixels;
-      chunk.lanes.lanesLaunched += kWaveLanes;
-      ++chunk.lanes.wavesByActiveLanes[static_cast<std::size_t>(active)];
+      };
+      (runStage(stages), ...);
     }
   });
   if (colour != nullptr) {

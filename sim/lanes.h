@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "raster/rasterizer.h"
+#include "sim/check.h"
 #include "sim/counters.h"
 #include "sim/heat_map.h"
 
@@ -66,8 +67,9 @@ struct ChunkState {
   LaneCounters lanes;
   TileHeatMap* heat = nullptr;
   std::vector<std::byte> lds;                    // the current group's shared memory
-  // Per-thread values that persist across the stages of one group (ComputeLane::Private): one
-  // T per thread of the group, sized by the first Private<T>() call and zeroed per group.
+  // Per-thread values that persist across the stages of one group or pixel wave (Private<T>()):
+  // one T per thread of the group (lane of the wave), sized by the first Private<T>() call and
+  // zeroed per group (wave).
   int groupThreads = 0;
   const void* privateType = nullptr;
   std::size_t privateStride = 0;
@@ -80,6 +82,15 @@ struct ChunkState {
 // One address per type: identifies the T of Private<T>() without RTTI.
 template <typename T>
 inline constexpr char kTypeTag = 0;
+
+// Thread (or pixel lane) `index`'s private T in `chunk`.
+template <typename T>
+T& PrivateOf(ChunkState& chunk, int index) {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+  // The storage comes from operator new; sizeof(T) is a multiple of alignof(T).
+  static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
+  return *std::launder(reinterpret_cast<T*>(chunk.PrivateAt(&kTypeTag<T>, sizeof(T), index)));
+}
 }  // namespace detail
 
 struct LaneBase {
@@ -123,7 +134,7 @@ struct PixelLane : LaneBase {
   const raster::QuadFragment* quad = nullptr;
   const raster::TriangleSetup* triangle = nullptr;  // draws only
   const raster::SamplePattern* pattern = nullptr;
-  const std::array<PixelLane, raster::kQuadPixels>* quadLanes = nullptr;
+  const PixelLane* quadLanes = nullptr;  // the quad's four lanes, in QuadPixelIndex order
 
   glm::vec2 Centre() const { return {static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f}; }
   raster::SampleMask Covered() const { return quad->covered.Pixel(quadPixel); }
@@ -135,19 +146,48 @@ struct PixelLane : LaneBase {
 
   // Every lane of the quad, helper flag included, is set up before any of them runs, so a
   // neighbour read here is never stale.
-  const PixelLane& QuadLane(int pixel) const { return (*quadLanes)[static_cast<std::size_t>(pixel)]; }
-  // Fine derivatives within the quad (ddx_fine/ddy_fine, quad-permute differences on GCN): f is
-  // evaluated on the lanes of this lane's own row (Ddx) or column (Ddy) and differenced, +x and
-  // +y positive.
-  template <typename F>
-  auto Ddx(F&& f) const {
-    const int row = quadPixel & 2;
-    return f(QuadLane(row + 1)) - f(QuadLane(row));
+  const PixelLane& QuadLane(int pixel) const {
+    AASIM_DCHECK(pixel >= 0 && pixel < raster::kQuadPixels);
+    return quadLanes[pixel];
   }
-  template <typename F>
-  auto Ddy(F&& f) const {
+
+  // This lane's T, kept across the stages of the pixel kernel (as ComputeLane::Private): zeroed
+  // per wave, one T per dispatch, not counted (registers).
+  template <typename T>
+  T& Private() const {
+    return detail::PrivateOf<T>(*chunk, lane);
+  }
+  // Fine derivatives within the quad (ddx_fine/ddy_fine, quad-permute differences on GCN) of a
+  // value every lane of the quad computed in an earlier stage and kept in its Private<T>(): the
+  // quad exchanges values, it does not re-run their loads. Differences along this lane's own row
+  // (Ddx) or column (Ddy), +x and +y positive. A neighbour that does not run (dead stencil)
+  // contributes its zeroed T.
+  template <typename T>
+  T Ddx() const {
+    const int row = quadPixel & 2;
+    return QuadPrivate<T>(row + 1) - QuadPrivate<T>(row);
+  }
+  template <typename T>
+  T Ddy() const {
     const int column = quadPixel & 1;
-    return f(QuadLane(column + 2)) - f(QuadLane(column));
+    return QuadPrivate<T>(column + 2) - QuadPrivate<T>(column);
+  }
+  // The same for one member of the private T: lane.Ddx(&Varyings::uv).
+  template <typename T, typename V>
+  V Ddx(V T::*member) const {
+    const int row = quadPixel & 2;
+    return QuadPrivate<T>(row + 1).*member - QuadPrivate<T>(row).*member;
+  }
+  template <typename T, typename V>
+  V Ddy(V T::*member) const {
+    const int column = quadPixel & 1;
+    return QuadPrivate<T>(column + 2).*member - QuadPrivate<T>(column).*member;
+  }
+
+ private:
+  template <typename T>
+  const T& QuadPrivate(int pixel) const {
+    return detail::PrivateOf<T>(*chunk, QuadLane(pixel).lane);
   }
 };
 
@@ -201,10 +241,7 @@ struct ComputeLane : LaneBase {
   // counted (the kernel's VGPR count declares their cost).
   template <typename T>
   T& Private() const {
-    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
-    // The storage comes from operator new; sizeof(T) is a multiple of alignof(T).
-    static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
-    return *std::launder(reinterpret_cast<T*>(chunk->PrivateAt(&detail::kTypeTag<T>, sizeof(T), localIndex)));
+    return detail::PrivateOf<T>(*chunk, localIndex);
   }
   // Names the pixel this lane worked on, for the heat map (indirect dispatches over queued items).
   void AttributeTo(int px, int py) const { *attribution = {px, py}; }

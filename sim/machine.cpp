@@ -192,6 +192,46 @@ void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8
   }
 }
 
+std::uint64_t Machine::SetUpPixelWave(detail::ChunkState& chunk, std::span<const raster::QuadFragment> quads,
+                                      std::span<const std::uint32_t> waveQuads, const raster::RasterResult& result,
+                                      const PixelTargets& targets, DispatchKind kind,
+                                      std::array<PixelLane, kWaveLanes>& lanes) {
+  // Every lane's kind and the wave's EXEC mask exist before any lane runs, so a kernel reading a
+  // quad neighbour's helper flag or the mask sees the final value, as on the hardware where EXEC
+  // is set before the shader starts (hw-facts §6.1).
+  std::uint64_t exec = 0;
+  int active = 0;
+  for (std::size_t k = 0; k < waveQuads.size(); ++k) {
+    const raster::QuadFragment& quad = quads[waveQuads[k]];
+    for (int p = 0; p < raster::kQuadPixels; ++p) {
+      const int laneIndex = static_cast<int>(k) * raster::kQuadPixels + p;
+      const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
+      chunk.lanes.CountLane(laneKind);
+      chunk.heat->Add(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
+      const bool runs = laneKind == LaneKind::Active || laneKind == LaneKind::Helper;
+      exec |= static_cast<std::uint64_t>(runs) << laneIndex;
+      active += laneKind == LaneKind::Active;
+      PixelLane& lane = lanes[static_cast<std::size_t>(laneIndex)];
+      lane.lane = laneIndex;
+      lane.helper = laneKind == LaneKind::Helper;
+      lane.chunk = &chunk;
+      lane.x = quad.x + (p & 1);
+      lane.y = quad.y + (p >> 1);
+      lane.quadPixel = p;
+      lane.quadInWave = static_cast<int>(k);
+      lane.quad = &quad;
+      lane.triangle = kind == DispatchKind::Draw ? &result.triangles[quad.setupIndex] : nullptr;
+      lane.pattern = targets.pattern;
+      lane.quadLanes = &lanes[k * raster::kQuadPixels];
+    }
+  }
+  for (std::size_t i = 0; i < waveQuads.size() * raster::kQuadPixels; ++i) lanes[i].exec = exec;
+  chunk.lanes.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes) - waveQuads.size() * raster::kQuadPixels;
+  chunk.lanes.lanesLaunched += kWaveLanes;
+  ++chunk.lanes.wavesByActiveLanes[static_cast<std::size_t>(active)];
+  return exec;
+}
+
 void Machine::CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
                                 const PixelTargets& targets) {
   // The DB reads one stencil byte per covered pixel of a quad that reached the per-pixel test.
