@@ -174,6 +174,13 @@ nlohmann::ordered_json HistogramsJson(const sim::LaneCounters& lanes) {
   return json;
 }
 
+// Whatever counters the pass declared (sim::Dispatch::Counter), by name.
+nlohmann::ordered_json PassCountersJson(const std::vector<sim::PassCounter>& counters) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  for (const sim::PassCounter& counter : counters) json[counter.name] = counter.value;
+  return json;
+}
+
 nlohmann::ordered_json ResourceJson(const sim::ResourceTraffic& traffic) {
   nlohmann::ordered_json json = {{"name", traffic.name}, {"access", sim::AccessName(traffic.access)}};
   for (const TrafficField& field : kRequestFields) json[field.name] = traffic.*field.member;
@@ -210,6 +217,7 @@ nlohmann::ordered_json DispatchJson(const sim::DispatchReport& report, std::stri
       {"group_count", Vector3(report.groupCount)},
       {"counters", LaneCountersJson(report.lanes)},
       {"histograms", HistogramsJson(report.lanes)},
+      {"pass_counters", PassCountersJson(report.passCounters)},
       {"resources", nlohmann::ordered_json::array()},
       {"occupancy", OccupancyJson(report.occupancy)},
       {"time_estimate_us", TimeJson(report.time)},
@@ -236,7 +244,21 @@ std::string FormatFixed(double value, int decimals) {
   return text;
 }
 
-std::vector<std::string> CsvHeader(bool withFrame) {
+// CSV columns of pass counters: every name any dispatch declared, in first-seen order; a
+// dispatch without one leaves its cell empty.
+constexpr const char* kPassCounterColumnPrefix = "pass_counters/";
+
+std::vector<std::string> PassCounterNames(std::span<const sim::DispatchReport> reports) {
+  std::vector<std::string> names;
+  for (const sim::DispatchReport& report : reports) {
+    for (const sim::PassCounter& counter : report.passCounters) {
+      if (std::find(names.begin(), names.end(), counter.name) == names.end()) names.push_back(counter.name);
+    }
+  }
+  return names;
+}
+
+std::vector<std::string> CsvHeader(bool withFrame, std::span<const std::string> passCounters) {
   std::vector<std::string> header;
   if (withFrame) header.emplace_back("frame");
   header.insert(header.end(), {"name", "kind", "strategy"});
@@ -251,11 +273,12 @@ std::vector<std::string> CsvHeader(bool withFrame) {
     header.push_back(std::string("estimate_") + field.name + "_us");
   }
   header.push_back(std::string("estimate_") + kBound);
+  for (const std::string& name : passCounters) header.push_back(kPassCounterColumnPrefix + name);
   return header;
 }
 
 std::vector<std::string> CsvRow(const sim::DispatchReport& report, std::string_view strategy,
-                                std::optional<std::string_view> frame) {
+                                std::optional<std::string_view> frame, std::span<const std::string> passCounters) {
   std::vector<std::string> row;
   if (frame) row.emplace_back(*frame);
   row.insert(row.end(), {report.name, std::string(sim::DispatchKindName(report.kind)), std::string(strategy)});
@@ -272,6 +295,11 @@ std::vector<std::string> CsvRow(const sim::DispatchReport& report, std::string_v
   row.emplace_back(sim::LimiterName(report.occupancy.limiter));
   for (const TimeField& field : kTimeFields) row.push_back(FormatDouble(report.time.*field.member));
   row.emplace_back(report.time.bound);
+  for (const std::string& name : passCounters) {
+    const auto found = std::find_if(report.passCounters.begin(), report.passCounters.end(),
+                                    [&](const sim::PassCounter& counter) { return counter.name == name; });
+    row.push_back(found == report.passCounters.end() ? std::string() : std::to_string(found->value));
+  }
   return row;
 }
 
@@ -428,12 +456,13 @@ std::string DispatchReportsCsv(std::span<const sim::DispatchReport> reports,
                                std::span<const std::string> frames) {
   CheckStrategies(reports, strategies);
   CheckLabels(reports, frames, "frames");
+  const std::vector<std::string> passCounters = PassCounterNames(reports);
   std::string csv;
-  AppendCsvLine(csv, CsvHeader(!frames.empty()));
+  AppendCsvLine(csv, CsvHeader(!frames.empty(), passCounters));
   for (std::size_t i = 0; i < reports.size(); ++i) {
     const std::optional<std::string_view> frame =
         frames.empty() ? std::nullopt : std::optional<std::string_view>(frames[i]);
-    AppendCsvLine(csv, CsvRow(reports[i], LabelOf(strategies, i), frame));
+    AppendCsvLine(csv, CsvRow(reports[i], LabelOf(strategies, i), frame, passCounters));
   }
   return csv;
 }

@@ -106,6 +106,14 @@ inline void LaneCounters::CountLane(LaneKind kind) {
   }
 }
 
+// A counter a pass declares for its own dispatch ("smaa/search_steps"), counted by its kernels
+// through a CounterView (sim/views.h) and reported next to the machine's counters.
+struct PassCounter {
+  std::string name;
+  std::uint64_t value = 0;
+  friend bool operator==(const PassCounter&, const PassCounter&) = default;
+};
+
 // How a dispatch binds a resource, one bit per mode. A resource bound in several modes is one
 // binding holding their union (its lines are counted once).
 enum class Access : std::uint16_t {

@@ -69,6 +69,10 @@ class Dispatch {
   template <typename T>
   SlotView<T> SlotWrite(Buffer<T>& buffer);
 
+  // A counter of this pass's own ("smaa/search_steps"), reported with the dispatch under
+  // "pass_counters"; the same name twice is the same counter.
+  CounterView Counter(const std::string& name);
+
   // Compute dispatches over an image: thread (x, y) is pixel (x, y) in the heat map.
   void SetPixelGrid(int width, int height) { pixelGrid_ = {width, height}; }
   // Runs the chunks (bins, or runs of compute groups) one after another in chunk order instead of
@@ -107,6 +111,7 @@ class Dispatch {
   std::vector<AppendTarget> appends_;
   std::vector<SlotCounterTarget> slotCounters_;
   std::vector<SlotStoreTarget> slotStores_;
+  std::vector<std::string> passCounters_;
   std::optional<glm::ivec2> pixelGrid_;
   bool serialChunks_ = false;
 };
@@ -124,6 +129,7 @@ struct DispatchReport {
   TileHeatMap heat;
   std::optional<raster::RasterCounters> raster;         // Draw and FullScreen
   std::optional<fmask::FragmentCounters> fragments;     // Draw into an EQAA surface
+  std::vector<PassCounter> passCounters;                // Dispatch::Counter, in declaration order
   double hostMilliseconds = 0.0;  // wall time of the simulation; not part of determinism
 
   std::uint64_t DramBytes() const;

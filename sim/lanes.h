@@ -61,6 +61,7 @@ struct ChunkState {
   std::vector<std::vector<std::byte>> appends;   // per append binding, staged items
   std::vector<std::vector<SlotReservation>> reservations;  // per slot counter, in lane order
   std::vector<std::vector<std::byte>> slotStores;          // per slot view, staged stores
+  std::vector<std::uint64_t> passCounters;                 // per Dispatch::Counter
   // Chunks of this dispatch run one after another in chunk order (Dispatch::SerialChunks), so
   // atomics may return values and slots are granted when reserved.
   bool serial = false;

@@ -1,6 +1,7 @@
 // Non-template parts of the machine (see dispatch.h): bindings, validation, the full-screen
 // triangle, indirect arguments, per-group lane counting, and merging chunks into a report.
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <memory>
@@ -57,7 +58,7 @@ bool DispatchReport::SameSimulation(const DispatchReport& other) const {
          groupCount == other.groupCount && lanes == other.lanes && resources == other.resources &&
          occupancy.wavesPerSimd == other.occupancy.wavesPerSimd && occupancy.limiter == other.occupancy.limiter &&
          time.totalMicroseconds == other.time.totalMicroseconds && heat == other.heat && raster == other.raster &&
-         fragments == other.fragments;
+         fragments == other.fragments && passCounters == other.passCounters;
 }
 
 Dispatch::Dispatch(std::string name, KernelInfo kernel) : kernel_(kernel) {
@@ -85,6 +86,14 @@ SlotCounterView Dispatch::Slots(SlotCounter& counter) {
   return {counter, static_cast<int>(slotCounters_.size() - 1), View(slot)};
 }
 
+CounterView Dispatch::Counter(const std::string& name) {
+  if (name.empty()) throw std::invalid_argument(Name() + ": a pass counter needs a name");
+  const auto found = std::find(passCounters_.begin(), passCounters_.end(), name);
+  const auto index = static_cast<int>(found - passCounters_.begin());
+  if (found == passCounters_.end()) passCounters_.push_back(name);
+  return CounterView(View(index));
+}
+
 std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::size_t count, TileHeatMap* heat) const {
   for (const Dispatch::Binding& binding : dispatch.bindings_) const_cast<Resource*>(binding.resource)->BeginDispatch();
   std::vector<detail::ChunkState> chunks(std::max<std::size_t>(count, 1));
@@ -94,6 +103,7 @@ std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::siz
     chunk.appends.resize(dispatch.appends_.size());
     chunk.reservations.resize(dispatch.slotCounters_.size());
     chunk.slotStores.resize(dispatch.slotStores_.size());
+    chunk.passCounters.assign(dispatch.passCounters_.size(), 0);
     chunk.heat = heat;
     chunk.serial = dispatch.serialChunks_;
   }
@@ -308,8 +318,11 @@ void Machine::Finish(Dispatch& dispatch, DispatchReport report,
   report.name = dispatch.Name();
   report.kernel = dispatch.Kernel();
   report.resources.resize(dispatch.bindings_.size());
+  report.passCounters.clear();
+  for (const std::string& name : dispatch.passCounters_) report.passCounters.push_back({name, 0});
   for (detail::ChunkState& chunk : chunks) {
     report.lanes.Merge(chunk.lanes);
+    for (std::size_t c = 0; c < chunk.passCounters.size(); ++c) report.passCounters[c].value += chunk.passCounters[c];
     for (std::size_t slot = 0; slot < chunk.traffic.size(); ++slot) {
       report.resources[slot].MergeLaneTraffic(chunk.traffic[slot]);
     }

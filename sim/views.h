@@ -253,6 +253,22 @@ class AppendView {
   int counterSlot_, stagingIndex_, elementBytes_;
 };
 
+// Increments a pass counter the dispatch declared (Dispatch::Counter): counted per chunk and
+// merged in chunk order, like traffic. Helper lanes do not count, as their stores do not land.
+class CounterView {
+ public:
+  explicit CounterView(ViewBinding counter) : counter_(std::move(counter)) {}
+
+  void Add(const LaneBase& lane, std::uint64_t n = 1) const {
+    detail::CheckOrigin(lane, counter_);
+    if (lane.helper) return;
+    lane.chunk->passCounters[static_cast<std::size_t>(counter_.slot)] += n;
+  }
+
+ private:
+  ViewBinding counter_;  // slot: the counter's index in the dispatch
+};
+
 // A stencil target for post passes: a one-sample depth/stencil surface whose per-pixel stencil a
 // pixel kernel exports and whose hi-stencil tile bits (hw-facts §5.3) a later full-screen pass
 // uses to drop tiles.

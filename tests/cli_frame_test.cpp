@@ -463,6 +463,35 @@ TEST(CliFrameDispatchOutput, CsvRowsMatchTheHeader) {
   EXPECT_EQ(rows[0].back(), "estimate_bound");
 }
 
+TEST(CliFrameDispatchOutput, PassCountersReachJsonAndCsvByName) {
+  sim::DispatchReport smaa = HandBuiltReport();
+  smaa.passCounters = {{"smaa/search_steps", 1234}, {"smaa/edges", 56}};
+  sim::DispatchReport fxaa = HandBuiltReport();
+  fxaa.name = "fxaa";
+  fxaa.passCounters = {{"fxaa/horizontal_items", 7}, {"smaa/edges", 8}};
+  const sim::DispatchReport plain = HandBuiltReport();
+  const std::vector<sim::DispatchReport> reports{smaa, fxaa, plain};
+
+  const nlohmann::ordered_json json =
+      cli::DispatchReportsJson(reports, sim::GpuConfigByName(sim::kDefaultGpuName), {});
+  EXPECT_EQ(json["dispatches"][0]["pass_counters"],
+            nlohmann::ordered_json({{"smaa/search_steps", 1234}, {"smaa/edges", 56}}));
+  EXPECT_EQ(json["dispatches"][1]["pass_counters"]["fxaa/horizontal_items"], 7);
+  EXPECT_EQ(json["dispatches"][2]["pass_counters"], nlohmann::ordered_json::object());
+
+  const std::vector<std::vector<std::string>> rows = ParseCsv(cli::DispatchReportsCsv(reports));
+  ASSERT_EQ(rows.size(), 4u);
+  // The union of names in first-seen order, after every fixed column.
+  const std::vector<std::string> tail(rows[0].end() - 3, rows[0].end());
+  EXPECT_EQ(tail, (std::vector<std::string>{"pass_counters/smaa/search_steps", "pass_counters/smaa/edges",
+                                            "pass_counters/fxaa/horizontal_items"}));
+  EXPECT_EQ(std::vector<std::string>(rows[1].end() - 3, rows[1].end()),
+            (std::vector<std::string>{"1234", "56", ""}));
+  EXPECT_EQ(std::vector<std::string>(rows[2].end() - 3, rows[2].end()), (std::vector<std::string>{"", "8", "7"}));
+  EXPECT_EQ(std::vector<std::string>(rows[3].end() - 3, rows[3].end()), (std::vector<std::string>{"", "", ""}));
+  for (const std::vector<std::string>& row : rows) EXPECT_EQ(row.size(), rows[0].size());
+}
+
 TEST(CliFrameDispatchOutput, SummaryNamesTheGpuAndAlignsItsColumns) {
   sim::DispatchReport other = HandBuiltReport();
   other.name = "x";

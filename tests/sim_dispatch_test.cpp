@@ -437,6 +437,48 @@ TEST(SimDispatch, AccessModesKeepTheirReportedNames) {
             (Names{{"exported", "stencil"}, {"tested", "stencil-test"}}));
 }
 
+std::vector<DispatchReport> CountPassEvents(int threads) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  Machine machine = TestMachine();
+  Dispatch d("test/pass-counters", SmallKernel());
+  const CounterView odd = d.Counter("test/odd_threads");
+  const CounterView steps = d.Counter("test/steps");
+  const CounterView again = d.Counter("test/odd_threads");  // the same counter
+  machine.Compute(d, {.threads = {8192, 1, 1}}, [&](ComputeLane& lane) {
+    const auto i = static_cast<std::uint64_t>(lane.threadId.x);
+    if (i % 2 == 1) odd.Add(lane);
+    if (i % 6 == 1) again.Add(lane);
+    steps.Add(lane, i % 7);
+  });
+  return machine.Reports();
+}
+
+TEST(SimDispatch, PassCountersAreCountedPerChunkAndMergedLikeTraffic) {
+  const std::vector<DispatchReport> one = CountPassEvents(1);
+  const std::vector<DispatchReport> two = CountPassEvents(2);
+  testing::ExpectSameReports(one, two);
+  std::uint64_t odd = 0, steps = 0;
+  for (std::uint64_t i = 0; i < 8192; ++i) {
+    odd += (i % 2 == 1) + (i % 6 == 1);
+    steps += i % 7;
+  }
+  EXPECT_EQ(two[0].passCounters, (std::vector<PassCounter>{{"test/odd_threads", odd}, {"test/steps", steps}}));
+  DispatchReport changed = two[0];
+  ++changed.passCounters[1].value;
+  EXPECT_FALSE(changed.SameSimulation(two[0]));
+
+  // Helper lanes run the kernel but do not count, as their stores do not land.
+  Machine machine = TestMachine();
+  Dispatch pixels("test/pass-counters-pixels", SmallKernel());
+  const CounterView lanes = pixels.Counter("test/lanes");
+  const DispatchReport r = machine.FullScreen(pixels, {.width = 7, .height = 5}, [&](PixelLane& lane) { lanes.Add(lane); });
+  EXPECT_GT(r.lanes.lanesHelper, 0u);
+  ASSERT_EQ(r.passCounters.size(), 1u);
+  EXPECT_EQ(r.passCounters[0].value, r.lanes.lanesActive);
+  Dispatch unnamed("test/unnamed", SmallKernel());
+  EXPECT_THROW(unnamed.Counter(""), std::invalid_argument);
+}
+
 TEST(SimDispatch, AppendOverflowIsCountedNotLost) {
   Machine machine = TestMachine();
   AppendBuffer<std::uint32_t> queue("small", 10);
