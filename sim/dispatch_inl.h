@@ -13,8 +13,7 @@
 #include <type_traits>
 #include <utility>
 
-#include <tbb/parallel_for.h>
-
+#include "sim/parallel.h"
 #include "sim/pixel_waves.h"
 
 namespace sim {
@@ -63,7 +62,7 @@ void ForEachChunk(std::size_t count, bool serial, const Body& body) {
   if (serial) {
     for (std::size_t chunk = 0; chunk < count; ++chunk) body(chunk);
   } else {
-    tbb::parallel_for(std::size_t{0}, count, body);
+    ParallelFor(count, body);
   }
 }
 
