@@ -47,6 +47,7 @@ constexpr TrafficField kRequestFields[] = {
     {"bytes_written", &sim::ResourceTraffic::bytesWritten},
     {"fetches", &sim::ResourceTraffic::fetches},
     {"atomics", &sim::ResourceTraffic::atomics},
+    {"stores_dropped_oob", &sim::ResourceTraffic::storesDroppedOob},
 };
 // Distinct 64-byte lines behind the requests.
 constexpr TrafficField kLineFields[] = {
@@ -129,8 +130,15 @@ nlohmann::ordered_json HistogramsJson(const sim::LaneCounters& lanes) {
   return json;
 }
 
+// Whatever counters the pass declared (sim::Dispatch::Counter), by name.
+nlohmann::ordered_json PassCountersJson(const std::vector<sim::PassCounter>& counters) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  for (const sim::PassCounter& counter : counters) json[counter.name] = counter.value;
+  return json;
+}
+
 nlohmann::ordered_json ResourceJson(const sim::ResourceTraffic& traffic) {
-  nlohmann::ordered_json json = {{"name", traffic.name}, {"access", traffic.access}};
+  nlohmann::ordered_json json = {{"name", traffic.name}, {"access", sim::AccessName(traffic.access)}};
   for (const TrafficField& field : kRequestFields) json[field.name] = traffic.*field.member;
   for (const TrafficField& field : kLineFields) json[field.name] = traffic.*field.member;
   json[kDramBytes] = traffic.DramBytes();
@@ -167,6 +175,7 @@ nlohmann::ordered_json DispatchJson(const study::DispatchRecord& record) {
       {"group_count", Vector3(report.groupCount)},
       {"counters", LaneCountersJson(report.lanes)},
       {"histograms", HistogramsJson(report.lanes)},
+      {"pass_counters", PassCountersJson(report.passCounters)},
       {"resources", nlohmann::ordered_json::array()},
       {"occupancy", OccupancyJson(report.occupancy)},
       {"time_estimate_us", TimeJson(report.time)},
@@ -187,7 +196,21 @@ std::string FormatDouble(double value) {
   return std::string(text, result.ptr);
 }
 
-std::vector<std::string> CsvHeader(bool withFrame) {
+// CSV columns of pass counters: every name any dispatch declared, in first-seen order; a
+// dispatch without one leaves its cell empty.
+constexpr const char* kPassCounterColumnPrefix = "pass_counters/";
+
+std::vector<std::string> PassCounterNames(std::span<const study::DispatchRecord> records) {
+  std::vector<std::string> names;
+  for (const study::DispatchRecord& record : records) {
+    for (const sim::PassCounter& counter : record.report.passCounters) {
+      if (std::find(names.begin(), names.end(), counter.name) == names.end()) names.push_back(counter.name);
+    }
+  }
+  return names;
+}
+
+std::vector<std::string> CsvHeader(bool withFrame, std::span<const std::string> passCounters) {
   std::vector<std::string> header;
   if (withFrame) header.emplace_back("frame");
   header.insert(header.end(), {"name", "kind", "strategy"});
@@ -202,11 +225,12 @@ std::vector<std::string> CsvHeader(bool withFrame) {
     header.push_back(std::string("estimate_") + field.name + "_us");
   }
   header.push_back(std::string("estimate_") + kBound);
+  for (const std::string& name : passCounters) header.push_back(kPassCounterColumnPrefix + name);
   return header;
 }
 
 std::vector<std::string> CsvRow(const sim::DispatchReport& report, std::string_view strategy,
-                                std::optional<std::string_view> frame) {
+                                std::optional<std::string_view> frame, std::span<const std::string> passCounters) {
   std::vector<std::string> row;
   if (frame) row.emplace_back(*frame);
   row.insert(row.end(), {report.name, std::string(sim::DispatchKindName(report.kind)), std::string(strategy)});
@@ -223,6 +247,11 @@ std::vector<std::string> CsvRow(const sim::DispatchReport& report, std::string_v
   row.emplace_back(sim::LimiterName(report.occupancy.limiter));
   for (const TimeField& field : kTimeFields) row.push_back(FormatDouble(report.time.*field.member));
   row.emplace_back(report.time.bound);
+  for (const std::string& name : passCounters) {
+    const auto found = std::find_if(report.passCounters.begin(), report.passCounters.end(),
+                                    [&](const sim::PassCounter& counter) { return counter.name == name; });
+    row.push_back(found == report.passCounters.end() ? std::string() : std::to_string(found->value));
+  }
   return row;
 }
 
@@ -371,12 +400,13 @@ std::string CsvField(std::string_view text) {
 
 std::string DispatchReportsCsv(std::span<const study::DispatchRecord> records) {
   const bool withFrame = AnyFrame(records);
+  const std::vector<std::string> passCounters = PassCounterNames(records);
   std::string csv;
-  AppendCsvLine(csv, CsvHeader(withFrame));
+  AppendCsvLine(csv, CsvHeader(withFrame, passCounters));
   for (const study::DispatchRecord& record : records) {
     const std::optional<std::string_view> frame =
         withFrame ? std::optional<std::string_view>(record.frame) : std::nullopt;
-    AppendCsvLine(csv, CsvRow(record.report, record.strategy, frame));
+    AppendCsvLine(csv, CsvRow(record.report, record.strategy, frame, passCounters));
   }
   return csv;
 }

@@ -13,6 +13,8 @@ if(AASIM_SANITIZE)
   target_compile_options(aasim_opt INTERFACE -fsanitize=address,undefined -fno-sanitize-recover=all
                                              -fno-omit-frame-pointer -O1 -g)
   target_link_options(aasim_opt INTERFACE -fsanitize=address,undefined)
+  # Release flags (NDEBUG) still get the AASIM_DCHECK tier of sim/check.h.
+  target_compile_definitions(aasim_opt INTERFACE AASIM_DCHECKS)
 endif()
 
 if(AASIM_FUZZ)
@@ -23,6 +25,7 @@ if(AASIM_FUZZ)
   target_compile_options(aasim_opt INTERFACE -fsanitize=fuzzer-no-link,address,undefined
                                              -fno-sanitize-recover=all -fno-omit-frame-pointer -O1 -g)
   target_link_options(aasim_opt INTERFACE -fsanitize=address,undefined)
+  target_compile_definitions(aasim_opt INTERFACE AASIM_DCHECKS)
 endif()
 
 # Every aasim library and executable links this one target.

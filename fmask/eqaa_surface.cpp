@@ -8,6 +8,8 @@
 #include <bit>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 namespace fmask {
 namespace {
 
@@ -244,6 +246,25 @@ int EqaaSurface::ChooseQuadVictim(const raster::QuadFragment& quad) const {
     }
   }
   return PickVictim(total, anyOccupied.data(), config_.fragments, policy_.tieBreak);
+}
+
+FragmentCounters EqaaSurface::UpdateAllBins(const raster::RasterResult& result, ColourSource source) {
+  const std::size_t bins = result.quadsByBin.size();
+  std::vector<FragmentCounters> binCounters(bins);
+  std::vector<std::vector<TraceEvent>> binTraces(bins);
+  tbb::parallel_for(std::size_t{0}, bins, [&](std::size_t bin) {
+    for (const raster::QuadFragment& quad : result.quadsByBin[bin]) {
+      std::array<Colour, 4> colours;
+      for (int p = 0; p < raster::kQuadPixels; ++p) colours[p] = source.colourOf(source.context, quad, p);
+      UpdateQuad(quad, colours, binCounters[bin], binTraces[bin]);
+    }
+  });
+  FragmentCounters total;
+  for (std::size_t bin = 0; bin < bins; ++bin) {
+    total.Merge(binCounters[bin]);
+    trace_.insert(trace_.end(), binTraces[bin].begin(), binTraces[bin].end());
+  }
+  return total;
 }
 
 void EqaaSurface::Update(const raster::QuadFragment& quad, const std::array<Colour, 4>& colours,

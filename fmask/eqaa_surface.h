@@ -197,6 +197,13 @@ class EqaaSurface {
   void ExpandFmask();
 
  private:
+  // UpdateAll's colour callback, type-erased so the parallel loop (oneTBB) lives in
+  // eqaa_surface.cpp rather than in a header every pass includes.
+  struct ColourSource {
+    const void* context;
+    Colour (*colourOf)(const void* context, const raster::QuadFragment& quad, int pixel);
+  };
+  FragmentCounters UpdateAllBins(const raster::RasterResult& result, ColourSource source);
   int PixelIndex(int x, int y) const { return y * width_ + x; }
   static FmaskLayout ValidatedLayout(const EqaaConfig& config);
   void UpdateQuad(const raster::QuadFragment& quad, const std::array<Colour, 4>& colours,

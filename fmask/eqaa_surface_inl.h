@@ -1,7 +1,7 @@
 #pragma once
 // Template members of eqaa_surface.h.
 
-#include <tbb/parallel_for.h>
+#include <type_traits>
 
 namespace fmask {
 
@@ -32,22 +32,10 @@ void FragmentCounters::ForEach(Fn&& fn) const {
 
 template <typename ColourFn>
 FragmentCounters EqaaSurface::UpdateAll(const raster::RasterResult& result, ColourFn&& colourOf) {
-  const std::size_t bins = result.quadsByBin.size();
-  std::vector<FragmentCounters> binCounters(bins);
-  std::vector<std::vector<TraceEvent>> binTraces(bins);
-  tbb::parallel_for(std::size_t{0}, bins, [&](std::size_t bin) {
-    for (const raster::QuadFragment& quad : result.quadsByBin[bin]) {
-      std::array<Colour, 4> colours;
-      for (int p = 0; p < raster::kQuadPixels; ++p) colours[p] = colourOf(quad, p);
-      UpdateQuad(quad, colours, binCounters[bin], binTraces[bin]);
-    }
-  });
-  FragmentCounters total;
-  for (std::size_t bin = 0; bin < bins; ++bin) {
-    total.Merge(binCounters[bin]);
-    trace_.insert(trace_.end(), binTraces[bin].begin(), binTraces[bin].end());
-  }
-  return total;
+  using Fn = std::remove_reference_t<ColourFn>;
+  return UpdateAllBins(result, {&colourOf, [](const void* context, const raster::QuadFragment& quad, int pixel) {
+                                  return Colour((*static_cast<Fn*>(const_cast<void*>(context)))(quad, pixel));
+                                }});
 }
 
 }  // namespace fmask

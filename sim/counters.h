@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "sim/wave.h"
 
@@ -27,6 +28,7 @@ struct LaneCounters {
   std::uint64_t ldsBytesWritten = 0;
   std::uint64_t barriers = 0;            // group barriers executed (per group)
   std::uint64_t appendOverflow = 0;      // appends dropped because the buffer was full
+  std::uint64_t slotOverflow = 0;        // reserved slots refused: the front and back fills met
   // Waves by active lanes, W0..W64.
   std::array<std::uint64_t, kWaveLanes + 1> wavesByActiveLanes{};
   // Rasterized quads by pixels passing depth/stencil, 0..4 (0 = culled, not launched).
@@ -66,6 +68,8 @@ inline constexpr LaneCounterField kLaneCounterFields[] = {
     {"lds/bytes_written", &LaneCounters::ldsBytesWritten, "LDS bytes written"},
     {"groups/barriers", &LaneCounters::barriers, "group barriers"},
     {"append/overflow", &LaneCounters::appendOverflow, "appends dropped: buffer full"},
+    {"slots/overflow", &LaneCounters::slotOverflow,
+     "slots refused: the reservation did not fit between the front and back fills"},
 };
 
 // Histogram names; element i of "waves/by_active_lanes" is the number of waves with i active
@@ -102,15 +106,64 @@ inline void LaneCounters::CountLane(LaneKind kind) {
   }
 }
 
+// A counter a pass declares for its own dispatch ("smaa/search_steps"), counted by its kernels
+// through a CounterView (sim/views.h) and reported next to the machine's counters.
+struct PassCounter {
+  std::string name;
+  std::uint64_t value = 0;
+  friend bool operator==(const PassCounter&, const PassCounter&) = default;
+};
+
+// How a dispatch binds a resource, one bit per mode. A resource bound in several modes is one
+// binding holding their union (its lines are counted once).
+enum class Access : std::uint16_t {
+  None = 0,
+  Read = 1 << 0,
+  Write = 1 << 1,
+  ReadWrite = Read | Write,
+  Append = 1 << 2,          // an append buffer's items
+  AppendCounter = 1 << 3,   // its hidden counter
+  IndirectArgs = 1 << 4,    // group counts the command processor reads
+  StencilExport = 1 << 5,   // a pixel kernel's stencil export
+  StencilTest = 1 << 6,     // the DB's per-pixel stencil test
+  SlotCounter = 1 << 7,     // sim/atomics.h
+  SlotWrite = 1 << 8,
+};
+
+constexpr Access operator|(Access a, Access b) {
+  return static_cast<Access>(static_cast<std::uint16_t>(a) | static_cast<std::uint16_t>(b));
+}
+
+// The name reports print: a single mode's own name, and "read-write" for read + write and for
+// any other mix (the names reports have always used).
+constexpr std::string_view AccessName(Access access) {
+  switch (access) {
+    case Access::None: return "none";
+    case Access::Read: return "read";
+    case Access::Write: return "write";
+    case Access::Append: return "append";
+    case Access::AppendCounter: return "append-counter";
+    case Access::IndirectArgs: return "indirect-args";
+    case Access::StencilExport: return "stencil";
+    case Access::StencilTest: return "stencil-test";
+    case Access::SlotCounter: return "slot-counter";
+    case Access::SlotWrite: return "slot-write";
+    default: return "read-write";
+  }
+}
+
 // Traffic of one bound resource in one dispatch: what lanes asked for, and the distinct
 // 64-byte lines behind it (the compulsory DRAM traffic, before any cache reuse across dispatches).
 struct ResourceTraffic {
   std::string name;
-  std::string access;  // "read", "read-write", "append", "indirect-args", "stencil"
+  Access access = Access::None;
   std::uint64_t bytesRead = 0;
   std::uint64_t bytesWritten = 0;
   std::uint64_t fetches = 0;  // load/sample instructions per lane (a bilinear sample is one)
   std::uint64_t atomics = 0;
+  // Stores and atomics outside the resource, dropped as D3D requires of UAVs (aa-facts §3: the
+  // FXAA queue's padding items rely on it), and slot stores of refused reservations.
+  std::uint64_t storesDroppedOob = 0;
   std::uint64_t linesRead = 0;
   std::uint64_t linesWritten = 0;
 
@@ -119,6 +172,7 @@ struct ResourceTraffic {
     bytesWritten += other.bytesWritten;
     fetches += other.fetches;
     atomics += other.atomics;
+    storesDroppedOob += other.storesDroppedOob;
   }
   std::uint64_t DramBytes() const { return (linesRead + linesWritten) * kCacheLineBytes; }
   friend bool operator==(const ResourceTraffic&, const ResourceTraffic&) = default;

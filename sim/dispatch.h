@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,6 +25,7 @@
 
 #include "fmask/eqaa_surface.h"
 #include "raster/rasterizer.h"
+#include "sim/atomics.h"
 #include "sim/counters.h"
 #include "sim/gpu_config.h"
 #include "sim/heat_map.h"
@@ -49,44 +51,73 @@ struct KernelInfo {
 
 class Dispatch {
  public:
-  Dispatch(std::string name, KernelInfo kernel) : name_(std::move(name)), kernel_(kernel) {}
+  Dispatch(std::string name, KernelInfo kernel);
 
-  const std::string& Name() const { return name_; }
+  const std::string& Name() const { return identity_->name; }
   const KernelInfo& Kernel() const { return kernel_; }
 
   template <typename T>
-  TextureView<T> Read(const Texture2D<T>& texture) { return {texture, Bind(texture, "read")}; }
+  TextureView<T> Read(const Texture2D<T>& texture) { return {texture, View(Bind(texture, Access::Read))}; }
   template <typename T>
-  RwTextureView<T> ReadWrite(Texture2D<T>& texture) { return {texture, Bind(texture, "read-write")}; }
+  RwTextureView<T> ReadWrite(Texture2D<T>& texture) { return {texture, View(Bind(texture, Access::ReadWrite))}; }
   template <typename T>
-  BufferView<T> Read(const Buffer<T>& buffer) { return {buffer, Bind(buffer, "read")}; }
+  BufferView<T> Read(const Buffer<T>& buffer) { return {buffer, View(Bind(buffer, Access::Read))}; }
   template <typename T>
-  RwBufferView<T> ReadWrite(Buffer<T>& buffer) { return {buffer, Bind(buffer, "read-write")}; }
+  RwBufferView<T> ReadWrite(Buffer<T>& buffer) { return {buffer, View(Bind(buffer, Access::ReadWrite))}; }
   template <typename T>
   AppendView<T> Append(AppendBuffer<T>& buffer);
-  StencilView Stencil(StencilBuffer& stencil) { return {stencil, Bind(stencil, "stencil")}; }
+  StencilView Stencil(StencilBuffer& stencil) { return {stencil, View(Bind(stencil, Access::StencilExport))}; }
+  // Slot reservations from `counter`, and stores into the reserved slots of `buffer`
+  // (sim/atomics.h).
+  SlotCounterView Slots(SlotCounter& counter);
+  template <typename T>
+  SlotView<T> SlotWrite(Buffer<T>& buffer);
+
+  // A counter of this pass's own ("smaa/search_steps"), reported with the dispatch under
+  // "pass_counters"; the same name twice is the same counter.
+  CounterView Counter(const std::string& name);
 
   // Compute dispatches over an image: thread (x, y) is pixel (x, y) in the heat map.
   void SetPixelGrid(int width, int height) { pixelGrid_ = {width, height}; }
+  // Runs the chunks (bins, or runs of compute groups) one after another in chunk order instead of
+  // in parallel, so atomics that return a value (RwBufferView::Interlocked*, slot indices) are
+  // deterministic: slower, for order-dependent kernels such as CMAA2's per-quad linked lists
+  // (aa-facts §4.1).
+  void SerialChunks() { serialChunks_ = true; }
 
  private:
   friend class Machine;
   struct Binding {
     const Resource* resource;
-    std::string access;
+    Access access;
   };
   struct AppendTarget {
     std::size_t elementSize;
     // Commits staged items (in chunk order) into the buffer; returns how many did not fit.
     std::function<std::uint64_t(std::span<const std::byte>)> commit;
   };
-  int Bind(const Resource& resource, std::string access);
+  struct SlotCounterTarget {
+    SlotCounter* counter;
+    int slot;
+  };
+  struct SlotStoreTarget {
+    int slot;
+    // Writes one chunk's staged stores once its reservations are granted.
+    std::function<void(std::span<const std::byte>, std::span<const std::vector<std::uint32_t>>, ResourceTraffic&)>
+        commit;
+  };
+  int Bind(const Resource& resource, Access access);
+  ViewBinding View(int slot) const { return {slot, identity_}; }
 
-  std::string name_;
+  std::shared_ptr<const DispatchIdentity> identity_;
   KernelInfo kernel_;
   std::vector<Binding> bindings_;
   std::vector<AppendTarget> appends_;
+  std::vector<SlotCounterTarget> slotCounters_;
+  std::vector<SlotStoreTarget> slotStores_;
+  std::vector<std::string> passCounters_;
   std::optional<glm::ivec2> pixelGrid_;
+  bool serialChunks_ = false;
 };
 
 struct DispatchReport {
@@ -102,6 +133,7 @@ struct DispatchReport {
   TileHeatMap heat;
   std::optional<raster::RasterCounters> raster;         // Draw and FullScreen
   std::optional<fmask::FragmentCounters> fragments;     // Draw into an EQAA surface
+  std::vector<PassCounter> passCounters;                // Dispatch::Counter, in declaration order
   double hostMilliseconds = 0.0;  // wall time of the simulation; not part of determinism
 
   std::uint64_t DramBytes() const;
@@ -163,12 +195,14 @@ class Machine {
 
   const GpuConfig& Gpu() const { return gpu_; }
 
-  // kernel(PixelLane&) -> fmask::Colour, the colour export of active lanes.
-  template <typename Kernel>
-  DispatchReport Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& kernel);
-  // kernel(PixelLane&) -> void.
-  template <typename Kernel>
-  DispatchReport FullScreen(Dispatch& dispatch, const FullScreenCall& call, Kernel&& kernel);
+  // Pixel kernels are one or more stages, each stage(PixelLane&); every lane of a wave finishes a
+  // stage before the next starts, so a later stage can take derivatives of values the quad
+  // computed earlier (PixelLane::Ddx). Draw: the last stage returns the fmask::Colour export of
+  // active lanes, earlier stages return void. FullScreen: every stage returns void.
+  template <typename... Stages>
+  DispatchReport Draw(Dispatch& dispatch, const DrawCall& call, Stages&&... stages);
+  template <typename... Stages>
+  DispatchReport FullScreen(Dispatch& dispatch, const FullScreenCall& call, Stages&&... stages);
   // Each stage is kernel(ComputeLane&) -> void; a group barrier separates consecutive stages.
   template <typename... Stages>
   DispatchReport Compute(Dispatch& dispatch, const ComputeGrid& grid, Stages&&... stages);
@@ -209,6 +243,7 @@ class Machine {
                          int itemCountSlot);
   void Finish(Dispatch& dispatch, DispatchReport report, std::vector<detail::ChunkState>& chunks,
                                int threadsPerGroup);
+  static void CommitSlots(Dispatch& dispatch, const detail::ChunkState& chunk, DispatchReport& report);
   const raster::RasterResult& RasterizeFullScreen(const FullScreenCall& call, Dispatch& dispatch);
   // Where a pixel dispatch's quads come from and where its exports go.
   struct PixelTargets {
@@ -219,9 +254,15 @@ class Machine {
     const StencilBuffer* stencil = nullptr;   // FullScreen: the buffer the DB tests per pixel
     int stencilSlot = -1;
   };
-  template <typename Kernel>
+  template <typename... Stages>
   void RunPixelWaves(Dispatch& dispatch, DispatchReport report, const raster::RasterResult& result,
-                                      const PixelTargets& targets, Kernel& kernel);
+                                      const PixelTargets& targets, Stages&... stages);
+  // Classifies every lane of a pixel wave and sets all of them up before any runs (a kernel reads
+  // its quad neighbours), counting lanes, heat and the wave; returns the wave's EXEC mask.
+  static std::uint64_t SetUpPixelWave(detail::ChunkState& chunk, std::span<const raster::QuadFragment> quads,
+                                      std::span<const std::uint32_t> waveQuads, const raster::RasterResult& result,
+                                      const PixelTargets& targets, DispatchKind kind,
+                                      std::array<PixelLane, kWaveLanes>& lanes);
   static void CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
                                 const PixelTargets& targets);
   template <typename... Stages>

@@ -7,19 +7,21 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
-#include <tbb/parallel_for.h>
-
+#include "sim/parallel.h"
 #include "sim/pixel_waves.h"
 
 namespace sim {
 
 template <typename T>
 AppendView<T> Dispatch::Append(AppendBuffer<T>& buffer) {
-  const int items = Bind(buffer.Storage(), "append");
-  const int counter = Bind(buffer.Counter(), "append-counter");
+  const int items = Bind(buffer.Storage(), Access::Append);
+  const int counter = Bind(buffer.Counter(), Access::AppendCounter);
   const int staging = static_cast<int>(appends_.size());
   appends_.push_back({sizeof(T), [&buffer](std::span<const std::byte> staged) -> std::uint64_t {
                         Buffer<T>& storage = buffer.Storage();
@@ -38,17 +40,39 @@ AppendView<T> Dispatch::Append(AppendBuffer<T>& buffer) {
                         if (!staged.empty()) buffer.Counter().TouchWrite(0, 4);
                         return overflow;
                       }});
-  return {items, counter, staging, buffer.Storage().ElementBytes()};
+  return {View(items), counter, staging, buffer.Storage().ElementBytes()};
+}
+
+template <typename T>
+SlotView<T> Dispatch::SlotWrite(Buffer<T>& buffer) {
+  const int slot = Bind(buffer, Access::SlotWrite);
+  const int staging = static_cast<int>(slotStores_.size());
+  slotStores_.push_back({slot, [&buffer](std::span<const std::byte> staged,
+                                         std::span<const std::vector<std::uint32_t>> granted,
+                                         ResourceTraffic& traffic) {
+                           detail::CommitSlotStores(buffer, staged, granted, traffic);
+                         }});
+  return {buffer, View(slot), staging};
 }
 
 namespace detail {
+// Runs body(chunk) for every chunk: in parallel, or in chunk order on the calling thread.
+template <typename Body>
+void ForEachChunk(std::size_t count, bool serial, const Body& body) {
+  if (serial) {
+    for (std::size_t chunk = 0; chunk < count; ++chunk) body(chunk);
+  } else {
+    ParallelFor(count, body);
+  }
+}
+
 inline double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 }  // namespace detail
 
-template <typename Kernel>
-DispatchReport Machine::Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& kernel) {
+template <typename... Stages>
+DispatchReport Machine::Draw(Dispatch& dispatch, const DrawCall& call, Stages&&... stages) {
   const auto start = std::chrono::steady_clock::now();
   if (call.depth == nullptr) throw std::invalid_argument(dispatch.Name() + ": a draw needs a depth/stencil surface");
   const raster::DepthSurfaceConfig& depth = call.depth->Config();
@@ -68,13 +92,13 @@ DispatchReport Machine::Draw(Dispatch& dispatch, const DrawCall& call, Kernel&& 
   targets.height = depth.height;
   targets.flush = call.flush;
   targets.colour = call.colour;
-  RunPixelWaves(dispatch, std::move(report), result, targets, kernel);
+  RunPixelWaves(dispatch, std::move(report), result, targets, stages...);
   reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
   return reports_.back();
 }
 
-template <typename Kernel>
-DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& call, Kernel&& kernel) {
+template <typename... Stages>
+DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& call, Stages&&... stages) {
   const auto start = std::chrono::steady_clock::now();
   ValidateKernel(dispatch, kWaveLanes);
   PixelTargets targets;
@@ -82,25 +106,37 @@ DispatchReport Machine::FullScreen(Dispatch& dispatch, const FullScreenCall& cal
   targets.height = call.height;
   targets.flush = call.flush;
   targets.stencil = call.stencil;
-  if (call.stencil != nullptr) targets.stencilSlot = dispatch.Bind(*call.stencil, "stencil-test");
+  if (call.stencil != nullptr) targets.stencilSlot = dispatch.Bind(*call.stencil, Access::StencilTest);
   const raster::RasterResult& result = RasterizeFullScreen(call, dispatch);
   DispatchReport report;
   report.kind = DispatchKind::FullScreen;
   report.raster = result.counters;
   report.lanes.tilesHiStencilCulled = result.counters.tilesHiStencilRejected;
   targets.pattern = call.stencil != nullptr ? &call.stencil->Surface().Pattern() : &fullScreenSurface_->Pattern();
-  RunPixelWaves(dispatch, std::move(report), result, targets, kernel);
+  RunPixelWaves(dispatch, std::move(report), result, targets, stages...);
   reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
   return reports_.back();
 }
 
-template <typename Kernel>
+namespace detail {
+template <typename Stage>
+using PixelExport = std::invoke_result_t<Stage&, PixelLane&>;
+
+template <typename... Stages, std::size_t... Earlier>
+constexpr bool OnlyTheLastStageExports(std::index_sequence<Earlier...>) {
+  using Last = std::tuple_element_t<sizeof...(Stages) - 1, std::tuple<Stages...>>;
+  return (std::is_void_v<PixelExport<std::tuple_element_t<Earlier, std::tuple<Stages...>>>> && ...) &&
+         (std::is_void_v<PixelExport<Last>> || std::is_same_v<PixelExport<Last>, fmask::Colour>);
+}
+}  // namespace detail
+
+template <typename... Stages>
 void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
                                              const raster::RasterResult& result, const PixelTargets& targets,
-                                             Kernel& kernel) {
-  using Export = std::invoke_result_t<Kernel&, PixelLane&>;
-  static_assert(std::is_void_v<Export> || std::is_same_v<Export, fmask::Colour>,
-                "a pixel kernel returns void or its fmask::Colour export");
+                                             Stages&... stages) {
+  static_assert(sizeof...(Stages) >= 1, "a pixel kernel has at least one stage");
+  static_assert(detail::OnlyTheLastStageExports<Stages...>(std::make_index_sequence<sizeof...(Stages) - 1>{}),
+                "earlier stages of a pixel kernel return void; the last returns void or its fmask::Colour export");
   const std::size_t bins = result.quadsByBin.size();
   fmask::EqaaSurface* const colour = targets.colour;
   report.heat = TileHeatMap(targets.width, targets.height);
@@ -111,69 +147,41 @@ void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
     for (std::size_t bin = 0; bin < bins; ++bin) shaded_[bin].assign(result.quadsByBin[bin].size(), {});
   }
   const DispatchKind kind = report.kind;
-  tbb::parallel_for(std::size_t{0}, bins, [&](std::size_t bin) {
+  detail::ForEachChunk(bins, dispatch.serialChunks_, [&](std::size_t bin) {
     detail::ChunkState& chunk = chunks[bin];
+    chunk.groupThreads = kWaveLanes;  // Private<T>() keeps one T per lane of the wave
     const std::vector<raster::QuadFragment>& quads = result.quadsByBin[bin];
     PackedWaves packed;
     if (targets.stencil != nullptr) {
       for (const raster::QuadFragment& quad : quads) CountStencilReads(chunk, quad, targets);
     }
     PackPixelWaves(quads, targets.flush, packed, chunk.lanes);
+    std::array<PixelLane, kWaveLanes> lanes;
     for (std::size_t wave = 0; wave < packed.WaveCount(); ++wave) {
-      const std::uint32_t first = packed.waveStarts[wave], last = packed.waveStarts[wave + 1];
-      // First pass: every lane's kind and the wave's EXEC mask, before any lane runs, so a kernel
-      // reading a quad neighbour's helper flag or the mask sees the final value, as on the
-      // hardware where EXEC is set before the shader starts (hw-facts §6.1).
-      std::array<LaneKind, kWaveLanes> kinds{};
-      std::uint64_t exec = 0;
-      int active = 0;
-      for (std::uint32_t k = first; k < last; ++k) {
-        const raster::QuadFragment& quad = quads[packed.quads[k]];
-        for (int p = 0; p < raster::kQuadPixels; ++p) {
-          const int laneIndex = static_cast<int>(k - first) * raster::kQuadPixels + p;
-          const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
-          kinds[static_cast<std::size_t>(laneIndex)] = laneKind;
-          chunk.lanes.CountLane(laneKind);
-          chunk.heat->Add(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
-          const bool runs = laneKind == LaneKind::Active || laneKind == LaneKind::Helper;
-          exec |= static_cast<std::uint64_t>(runs) << laneIndex;
-          active += laneKind == LaneKind::Active;
-        }
-      }
-      for (std::uint32_t k = first; k < last; ++k) {
-        const std::uint32_t quadIndex = packed.quads[k];
-        const raster::QuadFragment& quad = quads[quadIndex];
-        // The whole quad is set up before any of its lanes runs: derivatives read neighbours.
-        std::array<PixelLane, raster::kQuadPixels> lanes;
-        for (int p = 0; p < raster::kQuadPixels; ++p) {
-          PixelLane& lane = lanes[static_cast<std::size_t>(p)];
-          lane.lane = static_cast<int>(k - first) * raster::kQuadPixels + p;
-          lane.helper = kinds[static_cast<std::size_t>(lane.lane)] == LaneKind::Helper;
-          lane.exec = exec;
-          lane.chunk = &chunk;
-          lane.x = quad.x + (p & 1);
-          lane.y = quad.y + (p >> 1);
-          lane.quadPixel = p;
-          lane.quadInWave = static_cast<int>(k - first);
-          lane.quad = &quad;
-          lane.triangle = kind == DispatchKind::Draw ? &result.triangles[quad.setupIndex] : nullptr;
-          lane.pattern = targets.pattern;
-          lane.quadLanes = &lanes;
-        }
-        for (int p = 0; p < raster::kQuadPixels; ++p) {
-          PixelLane& lane = lanes[static_cast<std::size_t>(p)];
-          if (((exec >> lane.lane) & 1U) == 0) continue;
-          if constexpr (std::is_void_v<Export>) {
-            kernel(lane);
+      const std::span<const std::uint32_t> waveQuads(packed.quads.data() + packed.waveStarts[wave],
+                                                     packed.waveStarts[wave + 1] - packed.waveStarts[wave]);
+      const std::uint64_t exec = SetUpPixelWave(chunk, quads, waveQuads, result, targets, kind, lanes);
+      std::fill(chunk.privates.begin(), chunk.privates.end(), std::byte{0});
+      const int laneCount = static_cast<int>(waveQuads.size()) * raster::kQuadPixels;
+      // Every running lane finishes a stage before the next starts: a wave's lanes run in
+      // lockstep, so a stage boundary is where quad neighbours' values can be exchanged. Only
+      // the last stage can export (static_assert above).
+      auto runStage = [&](auto& stage) {
+        for (int i = 0; i < laneCount; ++i) {
+          PixelLane& lane = lanes[static_cast<std::size_t>(i)];
+          if (((exec >> i) & 1U) == 0) continue;
+          if constexpr (std::is_void_v<detail::PixelExport<decltype(stage)>>) {
+            stage(lane);
           } else {
-            const fmask::Colour exported = kernel(lane);
-            if (colour != nullptr && !lane.helper) shaded_[bin][quadIndex][static_cast<std::size_t>(p)] = exported;
+            const fmask::Colour exported = stage(lane);
+            if (colour != nullptr && !lane.helper) {
+              shaded_[bin][waveQuads[static_cast<std::size_t>(lane.quadInWave)]][static_cast<std::size_t>(lane.quadPixel)] =
+                  exported;
+            }
           }
         }
-      }
-      chunk.lanes.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes) - (last - first) * raster::kQuadPixels;
-      chunk.lanes.lanesLaunched += kWaveLanes;
-      ++chunk.lanes.wavesByActiveLanes[static_cast<std::size_t>(active)];
+      };
+      (runStage(stages), ...);
     }
   });
   if (colour != nullptr) {
@@ -232,9 +240,10 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
   std::vector<detail::ChunkState> chunks = MakeChunks(dispatch, chunkCount, &report.heat);
   CountIndirectReads(dispatch, limits, chunks[0]);
   const auto ldsBytes = static_cast<std::size_t>(dispatch.Kernel().ldsBytesPerGroup);
-  tbb::parallel_for(std::size_t{0}, chunkCount, [&](std::size_t chunkIndex) {
+  detail::ForEachChunk(chunkCount, dispatch.serialChunks_, [&](std::size_t chunkIndex) {
     detail::ChunkState& chunk = chunks[chunkIndex];
     chunk.lds.assign(ldsBytes, std::byte{0});
+    chunk.groupThreads = groupThreads;
     std::vector<ComputeLane> lanes(static_cast<std::size_t>(groupThreads));
     std::vector<glm::ivec2> attribution(static_cast<std::size_t>(groupThreads));
     std::vector<std::uint8_t> live(static_cast<std::size_t>(groupThreads));
@@ -244,6 +253,7 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
       const auto gi = static_cast<int>(g);
       const glm::ivec3 groupId{gi % groups.x, (gi / groups.x) % groups.y, gi / (groups.x * groups.y)};
       std::fill(chunk.lds.begin(), chunk.lds.end(), std::byte{0});
+      std::fill(chunk.privates.begin(), chunk.privates.end(), std::byte{0});
       std::fill(waveExec.begin(), waveExec.end(), std::uint64_t{0});
       for (int i = 0; i < groupThreads; ++i) {
         ComputeLane& lane = lanes[static_cast<std::size_t>(i)];

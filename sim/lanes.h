@@ -5,10 +5,13 @@
 // Kernels are C++ callables taking a PixelLane& or ComputeLane&; resource views (sim/views.h)
 // take the lane so they can count traffic into the lane's chunk without locks.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -18,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "raster/rasterizer.h"
+#include "sim/check.h"
 #include "sim/counters.h"
 #include "sim/heat_map.h"
 
@@ -30,18 +34,64 @@ class KernelError : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
+// The dispatch a view was created by. Views share ownership of it, so a view used after its
+// Dispatch is gone still names it, and its address cannot be reused by a later dispatch.
+struct DispatchIdentity {
+  std::uint64_t serial;  // 1, 2, ... in creation order, per process
+  std::string name;
+};
+
+// Which end of a slot range a reservation takes from (sim/atomics.h).
+enum class End : std::uint8_t { Front, Back };
+
 namespace detail {
+// One slot reservation a lane made in a chunk that runs in parallel with others; granted when the
+// chunk is committed (sim/atomics.h).
+struct SlotReservation {
+  End end;
+  std::uint32_t count;
+};
+
 // Everything the lanes of one chunk (a scan-converter bin or a fixed run of compute groups)
 // accumulate; chunks are merged in order after the dispatch, so results do not depend on which
 // host thread ran which chunk.
 struct ChunkState {
-  const std::string* dispatchName = nullptr;
+  const DispatchIdentity* dispatch = nullptr;
   std::vector<ResourceTraffic> traffic;          // per binding
   std::vector<std::vector<std::byte>> appends;   // per append binding, staged items
+  std::vector<std::vector<SlotReservation>> reservations;  // per slot counter, in lane order
+  std::vector<std::vector<std::byte>> slotStores;          // per slot view, staged stores
+  std::vector<std::uint64_t> passCounters;                 // per Dispatch::Counter
+  // Chunks of this dispatch run one after another in chunk order (Dispatch::SerialChunks), so
+  // atomics may return values and slots are granted when reserved.
+  bool serial = false;
   LaneCounters lanes;
   TileHeatMap* heat = nullptr;
   std::vector<std::byte> lds;                    // the current group's shared memory
+  // Per-thread values that persist across the stages of one group or pixel wave (Private<T>()):
+  // one T per thread of the group (lane of the wave), sized by the first Private<T>() call and
+  // zeroed per group (wave).
+  int groupThreads = 0;
+  const void* privateType = nullptr;
+  std::size_t privateStride = 0;
+  std::vector<std::byte> privates;
+
+  // Thread `thread`'s private T (identified by `type`); a KernelError for a second type.
+  std::byte* PrivateAt(const void* type, std::size_t size, int thread);
 };
+
+// One address per type: identifies the T of Private<T>() without RTTI.
+template <typename T>
+inline constexpr char kTypeTag = 0;
+
+// Thread (or pixel lane) `index`'s private T in `chunk`.
+template <typename T>
+T& PrivateOf(ChunkState& chunk, int index) {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+  // The storage comes from operator new; sizeof(T) is a multiple of alignof(T).
+  static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
+  return *std::launder(reinterpret_cast<T*>(chunk.PrivateAt(&kTypeTag<T>, sizeof(T), index)));
+}
 }  // namespace detail
 
 struct LaneBase {
@@ -54,6 +104,30 @@ struct LaneBase {
   detail::ChunkState* chunk = nullptr;
 };
 
+// What a view counts into: its binding slot in the dispatch that created it, and that dispatch.
+struct ViewBinding {
+  int slot = -1;
+  std::shared_ptr<const DispatchIdentity> origin;
+};
+
+namespace detail {
+// A view from another dispatch (created for an earlier Dispatch and captured by a later kernel)
+// would count into the wrong binding: a KernelError naming both dispatches.
+[[noreturn]] void StaleView(const LaneBase& lane, const DispatchIdentity& origin);
+inline void CheckOrigin(const LaneBase& lane, const ViewBinding& binding) {
+  if (binding.origin.get() != lane.chunk->dispatch) [[unlikely]] StaleView(lane, *binding.origin);
+}
+
+// Refuses an operation whose result depends on the order in which lanes of different chunks run,
+// unless the chunks run serially.
+inline void RequireSerialChunks(const LaneBase& lane, const char* what) {
+  if (lane.chunk->serial) return;
+  throw KernelError(lane.chunk->dispatch->name + ": " + what +
+                    " depends on the order lanes run in; call Dispatch::SerialChunks() so the dispatch runs its "
+                    "chunks one after another (slower, but deterministic)");
+}
+}  // namespace detail
+
 struct PixelLane : LaneBase {
   int x = 0, y = 0;
   int quadPixel = 0;   // raster::QuadPixelIndex order
@@ -61,7 +135,7 @@ struct PixelLane : LaneBase {
   const raster::QuadFragment* quad = nullptr;
   const raster::TriangleSetup* triangle = nullptr;  // draws only
   const raster::SamplePattern* pattern = nullptr;
-  const std::array<PixelLane, raster::kQuadPixels>* quadLanes = nullptr;
+  const PixelLane* quadLanes = nullptr;  // the quad's four lanes, in QuadPixelIndex order
 
   glm::vec2 Centre() const { return {static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f}; }
   raster::SampleMask Covered() const { return quad->covered.Pixel(quadPixel); }
@@ -73,19 +147,48 @@ struct PixelLane : LaneBase {
 
   // Every lane of the quad, helper flag included, is set up before any of them runs, so a
   // neighbour read here is never stale.
-  const PixelLane& QuadLane(int pixel) const { return (*quadLanes)[static_cast<std::size_t>(pixel)]; }
-  // Fine derivatives within the quad (ddx_fine/ddy_fine, quad-permute differences on GCN): f is
-  // evaluated on the lanes of this lane's own row (Ddx) or column (Ddy) and differenced, +x and
-  // +y positive.
-  template <typename F>
-  auto Ddx(F&& f) const {
-    const int row = quadPixel & 2;
-    return f(QuadLane(row + 1)) - f(QuadLane(row));
+  const PixelLane& QuadLane(int pixel) const {
+    AASIM_DCHECK(pixel >= 0 && pixel < raster::kQuadPixels);
+    return quadLanes[pixel];
   }
-  template <typename F>
-  auto Ddy(F&& f) const {
+
+  // This lane's T, kept across the stages of the pixel kernel (as ComputeLane::Private): zeroed
+  // per wave, one T per dispatch, not counted (registers).
+  template <typename T>
+  T& Private() const {
+    return detail::PrivateOf<T>(*chunk, lane);
+  }
+  // Fine derivatives within the quad (ddx_fine/ddy_fine, quad-permute differences on GCN) of a
+  // value every lane of the quad computed in an earlier stage and kept in its Private<T>(): the
+  // quad exchanges values, it does not re-run their loads. Differences along this lane's own row
+  // (Ddx) or column (Ddy), +x and +y positive. A neighbour that does not run (dead stencil)
+  // contributes its zeroed T.
+  template <typename T>
+  T Ddx() const {
+    const int row = quadPixel & 2;
+    return QuadPrivate<T>(row + 1) - QuadPrivate<T>(row);
+  }
+  template <typename T>
+  T Ddy() const {
     const int column = quadPixel & 1;
-    return f(QuadLane(column + 2)) - f(QuadLane(column));
+    return QuadPrivate<T>(column + 2) - QuadPrivate<T>(column);
+  }
+  // The same for one member of the private T: lane.Ddx(&Varyings::uv).
+  template <typename T, typename V>
+  V Ddx(V T::*member) const {
+    const int row = quadPixel & 2;
+    return QuadPrivate<T>(row + 1).*member - QuadPrivate<T>(row).*member;
+  }
+  template <typename T, typename V>
+  V Ddy(V T::*member) const {
+    const int column = quadPixel & 1;
+    return QuadPrivate<T>(column + 2).*member - QuadPrivate<T>(column).*member;
+  }
+
+ private:
+  template <typename T>
+  const T& QuadPrivate(int pixel) const {
+    return detail::PrivateOf<T>(*chunk, QuadLane(pixel).lane);
   }
 };
 
@@ -115,9 +218,49 @@ struct ComputeLane : LaneBase {
     std::memcpy(LdsAddress(index * sizeof(T), sizeof(T)), &value, sizeof(T));
     chunk->lanes.ldsBytesWritten += sizeof(T);
   }
+  // LDS atomics returning the value before the operation (InterlockedAdd/Min/Max/Exchange on
+  // groupshared memory). A group runs on one host thread with its lanes in order, so the returned
+  // values are deterministic in any dispatch. Each reads and writes sizeof(T) LDS bytes.
+  template <typename T>
+  T LdsAtomicAdd(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T old) { return static_cast<T>(old + value); });
+  }
+  template <typename T>
+  T LdsAtomicMin(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T old) { return std::min(old, value); });
+  }
+  template <typename T>
+  T LdsAtomicMax(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T old) { return std::max(old, value); });
+  }
+  template <typename T>
+  T LdsAtomicExchange(std::size_t index, T value) const {
+    return LdsRmw<T>(index, [value](T) { return value; });
+  }
+
+  // This thread's T, kept across the stages (barriers) of its group: what a shader keeps in
+  // registers across a barrier, without going through LDS. Every thread's T starts zeroed in
+  // every group; a dispatch uses one T for all its stages. Registers are not memory: nothing is
+  // counted (the kernel's VGPR count declares their cost).
+  template <typename T>
+  T& Private() const {
+    return detail::PrivateOf<T>(*chunk, localIndex);
+  }
 
  private:
   std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const;
+  template <typename T, typename Op>
+  T LdsRmw(std::size_t index, Op op) const {
+    static_assert(std::is_integral_v<T>, "LDS atomics are defined on integers");
+    std::byte* address = LdsAddress(index * sizeof(T), sizeof(T));
+    T old;
+    std::memcpy(&old, address, sizeof(T));
+    const T updated = op(old);
+    std::memcpy(address, &updated, sizeof(T));
+    chunk->lanes.ldsBytesRead += sizeof(T);
+    chunk->lanes.ldsBytesWritten += sizeof(T);
+    return old;
+  }
 };
 
 }  // namespace sim

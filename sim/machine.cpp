@@ -1,7 +1,10 @@
 // Non-template parts of the machine (see dispatch.h): bindings, validation, the full-screen
 // triangle, indirect arguments, per-group lane counting, and merging chunks into a report.
 
+#include <algorithm>
 #include <array>
+#include <atomic>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -20,10 +23,28 @@ std::array<float, 3> PixelLane::CentroidBarycentrics() const {
 
 std::byte* ComputeLane::LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
   if (byteOffset + bytes > chunk->lds.size()) {
-    throw KernelError(*chunk->dispatchName + ": LDS access at byte " + std::to_string(byteOffset) +
+    throw KernelError(chunk->dispatch->name + ": LDS access at byte " + std::to_string(byteOffset) +
                       " beyond the declared " + std::to_string(chunk->lds.size()) + " bytes");
   }
   return chunk->lds.data() + byteOffset;
+}
+
+std::byte* detail::ChunkState::PrivateAt(const void* type, std::size_t size, int thread) {
+  if (privateType == nullptr) {
+    privateType = type;
+    privateStride = size;
+    privates.assign(privateStride * static_cast<std::size_t>(groupThreads), std::byte{0});
+  } else if (privateType != type) {
+    throw KernelError(dispatch->name + ": Private<T>() with two different types; one dispatch keeps one T per thread");
+  }
+  return privates.data() + privateStride * static_cast<std::size_t>(thread);
+}
+
+void detail::StaleView(const LaneBase& lane, const DispatchIdentity& origin) {
+  const DispatchIdentity& running = *lane.chunk->dispatch;
+  throw KernelError(running.name + ": a view created by dispatch '" + origin.name + "' (#" +
+                    std::to_string(origin.serial) + ") is used by dispatch '" + running.name + "' (#" +
+                    std::to_string(running.serial) + "); create a kernel's views from the Dispatch it runs under");
 }
 
 std::uint64_t DispatchReport::DramBytes() const {
@@ -37,28 +58,54 @@ bool DispatchReport::SameSimulation(const DispatchReport& other) const {
          groupCount == other.groupCount && lanes == other.lanes && resources == other.resources &&
          occupancy.wavesPerSimd == other.occupancy.wavesPerSimd && occupancy.limiter == other.occupancy.limiter &&
          time.totalMicroseconds == other.time.totalMicroseconds && heat == other.heat && raster == other.raster &&
-         fragments == other.fragments;
+         fragments == other.fragments && passCounters == other.passCounters;
 }
 
-int Dispatch::Bind(const Resource& resource, std::string access) {
+Dispatch::Dispatch(std::string name, KernelInfo kernel) : kernel_(kernel) {
+  static std::atomic<std::uint64_t> lastSerial{0};
+  identity_ = std::make_shared<const DispatchIdentity>(DispatchIdentity{++lastSerial, std::move(name)});
+}
+
+int Dispatch::Bind(const Resource& resource, Access access) {
   for (std::size_t slot = 0; slot < bindings_.size(); ++slot) {
     if (bindings_[slot].resource != &resource) continue;
     // One resource bound twice is one binding, so its lines are counted once.
-    if (bindings_[slot].access != access) bindings_[slot].access = "read-write";
+    bindings_[slot].access = bindings_[slot].access | access;
     return static_cast<int>(slot);
   }
-  bindings_.push_back({&resource, std::move(access)});
+  bindings_.push_back({&resource, access});
   return static_cast<int>(bindings_.size() - 1);
+}
+
+SlotCounterView Dispatch::Slots(SlotCounter& counter) {
+  for (std::size_t i = 0; i < slotCounters_.size(); ++i) {
+    if (slotCounters_[i].counter == &counter) return {counter, static_cast<int>(i), View(slotCounters_[i].slot)};
+  }
+  const int slot = Bind(counter.Counters(), Access::SlotCounter);
+  slotCounters_.push_back({&counter, slot});
+  return {counter, static_cast<int>(slotCounters_.size() - 1), View(slot)};
+}
+
+CounterView Dispatch::Counter(const std::string& name) {
+  if (name.empty()) throw std::invalid_argument(Name() + ": a pass counter needs a name");
+  const auto found = std::find(passCounters_.begin(), passCounters_.end(), name);
+  const auto index = static_cast<int>(found - passCounters_.begin());
+  if (found == passCounters_.end()) passCounters_.push_back(name);
+  return CounterView(View(index));
 }
 
 std::vector<detail::ChunkState> Machine::MakeChunks(Dispatch& dispatch, std::size_t count, TileHeatMap* heat) const {
   for (const Dispatch::Binding& binding : dispatch.bindings_) const_cast<Resource*>(binding.resource)->BeginDispatch();
   std::vector<detail::ChunkState> chunks(std::max<std::size_t>(count, 1));
   for (detail::ChunkState& chunk : chunks) {
-    chunk.dispatchName = &dispatch.name_;
+    chunk.dispatch = dispatch.identity_.get();
     chunk.traffic.resize(dispatch.bindings_.size());
     chunk.appends.resize(dispatch.appends_.size());
+    chunk.reservations.resize(dispatch.slotCounters_.size());
+    chunk.slotStores.resize(dispatch.slotStores_.size());
+    chunk.passCounters.assign(dispatch.passCounters_.size(), 0);
     chunk.heat = heat;
+    chunk.serial = dispatch.serialChunks_;
   }
   return chunks;
 }
@@ -92,7 +139,7 @@ Machine::IndirectLaunch Machine::ReadIndirectArguments(Dispatch& dispatch, const
                                 std::to_string(call.offset));
   }
   IndirectLaunch launch;
-  launch.limits.argumentSlot = dispatch.Bind(*call.arguments, "indirect-args");
+  launch.limits.argumentSlot = dispatch.Bind(*call.arguments, Access::IndirectArgs);
   launch.limits.argumentByte = call.offset * 4;
   for (int axis = 0; axis < 3; ++axis) {
     const std::uint32_t count = call.arguments->At(call.offset + static_cast<std::size_t>(axis));
@@ -110,7 +157,7 @@ Machine::IndirectLaunch Machine::ReadIndirectArguments(Dispatch& dispatch, const
                                   " outside its buffer");
     }
     launch.limits.itemCount = call.itemCount->At(call.itemCountIndex);
-    launch.limits.itemCountSlot = dispatch.Bind(*call.itemCount, "read");
+    launch.limits.itemCountSlot = dispatch.Bind(*call.itemCount, Access::Read);
     launch.limits.itemCountByte = call.itemCountIndex * 4;
   }
   return launch;
@@ -153,6 +200,46 @@ void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8
     traffic.fetches += static_cast<std::uint64_t>(wavesPerGroup);
     traffic.bytesRead += 4 * static_cast<std::uint64_t>(wavesPerGroup);
   }
+}
+
+std::uint64_t Machine::SetUpPixelWave(detail::ChunkState& chunk, std::span<const raster::QuadFragment> quads,
+                                      std::span<const std::uint32_t> waveQuads, const raster::RasterResult& result,
+                                      const PixelTargets& targets, DispatchKind kind,
+                                      std::array<PixelLane, kWaveLanes>& lanes) {
+  // Every lane's kind and the wave's EXEC mask exist before any lane runs, so a kernel reading a
+  // quad neighbour's helper flag or the mask sees the final value, as on the hardware where EXEC
+  // is set before the shader starts (hw-facts §6.1).
+  std::uint64_t exec = 0;
+  int active = 0;
+  for (std::size_t k = 0; k < waveQuads.size(); ++k) {
+    const raster::QuadFragment& quad = quads[waveQuads[k]];
+    for (int p = 0; p < raster::kQuadPixels; ++p) {
+      const int laneIndex = static_cast<int>(k) * raster::kQuadPixels + p;
+      const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
+      chunk.lanes.CountLane(laneKind);
+      chunk.heat->Add(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
+      const bool runs = laneKind == LaneKind::Active || laneKind == LaneKind::Helper;
+      exec |= static_cast<std::uint64_t>(runs) << laneIndex;
+      active += laneKind == LaneKind::Active;
+      PixelLane& lane = lanes[static_cast<std::size_t>(laneIndex)];
+      lane.lane = laneIndex;
+      lane.helper = laneKind == LaneKind::Helper;
+      lane.chunk = &chunk;
+      lane.x = quad.x + (p & 1);
+      lane.y = quad.y + (p >> 1);
+      lane.quadPixel = p;
+      lane.quadInWave = static_cast<int>(k);
+      lane.quad = &quad;
+      lane.triangle = kind == DispatchKind::Draw ? &result.triangles[quad.setupIndex] : nullptr;
+      lane.pattern = targets.pattern;
+      lane.quadLanes = &lanes[k * raster::kQuadPixels];
+    }
+  }
+  for (std::size_t i = 0; i < waveQuads.size() * raster::kQuadPixels; ++i) lanes[i].exec = exec;
+  chunk.lanes.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes) - waveQuads.size() * raster::kQuadPixels;
+  chunk.lanes.lanesLaunched += kWaveLanes;
+  ++chunk.lanes.wavesByActiveLanes[static_cast<std::size_t>(active)];
+  return exec;
 }
 
 void Machine::CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
@@ -214,19 +301,36 @@ const raster::RasterResult& Machine::RasterizeFullScreen(const FullScreenCall& c
   return rasterizer_.Run({kTriangle, kIndices, 0}, state, *surface);
 }
 
+void Machine::CommitSlots(Dispatch& dispatch, const detail::ChunkState& chunk, DispatchReport& report) {
+  std::vector<std::vector<std::uint32_t>> granted(dispatch.slotCounters_.size());
+  for (std::size_t c = 0; c < granted.size(); ++c) {
+    granted[c] = detail::GrantReservations(*dispatch.slotCounters_[c].counter, chunk.reservations[c],
+                                           report.lanes.slotOverflow);
+  }
+  for (std::size_t s = 0; s < dispatch.slotStores_.size(); ++s) {
+    const Dispatch::SlotStoreTarget& target = dispatch.slotStores_[s];
+    target.commit(chunk.slotStores[s], granted, report.resources[static_cast<std::size_t>(target.slot)]);
+  }
+}
+
 void Machine::Finish(Dispatch& dispatch, DispatchReport report,
                                       std::vector<detail::ChunkState>& chunks, int threadsPerGroup) {
   report.name = dispatch.Name();
   report.kernel = dispatch.Kernel();
   report.resources.resize(dispatch.bindings_.size());
+  report.passCounters.clear();
+  for (const std::string& name : dispatch.passCounters_) report.passCounters.push_back({name, 0});
   for (detail::ChunkState& chunk : chunks) {
     report.lanes.Merge(chunk.lanes);
+    for (std::size_t c = 0; c < chunk.passCounters.size(); ++c) report.passCounters[c].value += chunk.passCounters[c];
     for (std::size_t slot = 0; slot < chunk.traffic.size(); ++slot) {
       report.resources[slot].MergeLaneTraffic(chunk.traffic[slot]);
     }
     for (std::size_t a = 0; a < chunk.appends.size(); ++a) {
       report.lanes.appendOverflow += dispatch.appends_[a].commit(chunk.appends[a]);
     }
+    // Chunk order: the prefix sum that makes slot indices independent of the thread count.
+    CommitSlots(dispatch, chunk, report);
   }
   for (std::size_t slot = 0; slot < dispatch.bindings_.size(); ++slot) {
     const Dispatch::Binding& binding = dispatch.bindings_[slot];

@@ -4,28 +4,41 @@
 // it touched. Out-of-range loads return zero and out-of-range stores are dropped, as D3D UAV
 // semantics require (aa-facts §3: the FXAA queue relies on dropped out-of-bounds writes); stores
 // and appends from helper lanes are dropped, as the hardware masks them (hw-facts §6.1).
+// Dropped out-of-range stores and atomics are counted per binding (stores_dropped_oob).
 // Views are created by sim::Dispatch, which records the binding they count into.
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "raster/depth_stencil.h"
+#include "sim/check.h"
 #include "sim/lanes.h"
 #include "sim/resources.h"
 
 namespace sim {
 
 namespace detail {
+// The traffic a view counts into, after checking that the view belongs to the running dispatch.
+inline ResourceTraffic& Traffic(const LaneBase& lane, const ViewBinding& binding) {
+  CheckOrigin(lane, binding);
+  AASIM_DCHECK_LT(static_cast<std::size_t>(binding.slot), lane.chunk->traffic.size());
+  return lane.chunk->traffic[static_cast<std::size_t>(binding.slot)];
+}
+// A second binding of a view whose origin Traffic(lane, binding) has checked.
 inline ResourceTraffic& Traffic(const LaneBase& lane, int slot) {
+  AASIM_DCHECK_LT(static_cast<std::size_t>(slot), lane.chunk->traffic.size());
   return lane.chunk->traffic[static_cast<std::size_t>(slot)];
 }
 }  // namespace detail
@@ -40,7 +53,7 @@ inline constexpr int kMaxTexelOffset = 7;
 
 namespace detail {
 [[noreturn]] inline void ThrowBadTexelArgument(const LaneBase& lane, const std::string& what) {
-  throw KernelError(*lane.chunk->dispatchName + ": " + what);
+  throw KernelError(lane.chunk->dispatch->name + ": " + what);
 }
 inline void CheckTexelOffset(const LaneBase& lane, glm::ivec2 offset) {
   if (offset.x < kMinTexelOffset || offset.x > kMaxTexelOffset || offset.y < kMinTexelOffset ||
@@ -62,8 +75,8 @@ class TextureView {
  public:
   using Gathered = glm::vec<4, TexelScalar<T>>;
 
-  TextureView(const Texture2D<T>& texture, int slot)
-      : texture_(&texture), slot_(slot), format_(texture.TexelFormat()) {}
+  TextureView(const Texture2D<T>& texture, ViewBinding binding)
+      : texture_(&texture), binding_(std::move(binding)), format_(texture.TexelFormat()) {}
 
   // The same binding (same traffic counters, same bytes) read through another format: SMAA
   // reads one RGBA8 colour texture through a UNORM view and through an sRGB view (aa-facts §1.9).
@@ -168,7 +181,7 @@ class TextureView {
   }
   // One fetch instruction reading `texels` texels (the footprint; touched lines come from Texel).
   void CountFetch(const LaneBase& lane, int texels) const {
-    ResourceTraffic& traffic = detail::Traffic(lane, slot_);
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     ++traffic.fetches;
     traffic.bytesRead += static_cast<std::uint64_t>(texels) * static_cast<std::uint64_t>(texture_->TexelBytes());
   }
@@ -189,14 +202,15 @@ class TextureView {
   }
 
   const Texture2D<T>* texture_;
-  int slot_;
+  ViewBinding binding_;
   std::optional<Format> format_;
 };
 
 template <typename T>
 class RwTextureView {
  public:
-  RwTextureView(Texture2D<T>& texture, int slot) : texture_(&texture), read_(texture, slot), slot_(slot) {}
+  RwTextureView(Texture2D<T>& texture, const ViewBinding& binding)
+      : texture_(&texture), read_(texture, binding), binding_(binding) {}
 
   // The same binding through another format of its typeless family (TextureView::As): an sRGB
   // view of an RGBA8 texture encodes what it stores.
@@ -213,9 +227,14 @@ class RwTextureView {
   }
   // Quantised through the view format as the hardware's conversion does (sim/formats.h).
   void Store(const LaneBase& lane, int x, int y, const T& value) const {
-    if (lane.helper || !texture_->Contains(x, y)) return;
+    if (lane.helper) return;
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
+    if (!texture_->Contains(x, y)) {
+      ++traffic.storesDroppedOob;
+      return;
+    }
     const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
-    detail::Traffic(lane, slot_).bytesWritten += bytes;
+    traffic.bytesWritten += bytes;
     texture_->TouchWrite(texture_->Index(x, y) * bytes, bytes);
     texture_->At(x, y) = Kept(value);
   }
@@ -230,16 +249,16 @@ class RwTextureView {
 
   Texture2D<T>* texture_;
   TextureView<T> read_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 template <typename T>
 class BufferView {
  public:
-  BufferView(const Buffer<T>& buffer, int slot) : buffer_(&buffer), slot_(slot) {}
+  BufferView(const Buffer<T>& buffer, ViewBinding binding) : buffer_(&buffer), binding_(std::move(binding)) {}
   std::size_t Size() const { return buffer_->Size(); }
   T Load(const LaneBase& lane, std::size_t index) const {
-    ResourceTraffic& traffic = detail::Traffic(lane, slot_);
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     ++traffic.fetches;
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
     traffic.bytesRead += bytes;
@@ -250,36 +269,89 @@ class BufferView {
 
  private:
   const Buffer<T>* buffer_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 template <typename T>
 class RwBufferView {
  public:
-  RwBufferView(Buffer<T>& buffer, int slot) : buffer_(&buffer), read_(buffer, slot), slot_(slot) {}
+  RwBufferView(Buffer<T>& buffer, const ViewBinding& binding)
+      : buffer_(&buffer), read_(buffer, binding), binding_(binding) {}
   std::size_t Size() const { return buffer_->Size(); }
   T Load(const LaneBase& lane, std::size_t index) const { return read_.Load(lane, index); }
   void Store(const LaneBase& lane, std::size_t index, const T& value) const {
-    if (lane.helper || index >= buffer_->Size()) return;
+    if (lane.helper) return;
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
+    if (index >= buffer_->Size()) {
+      ++traffic.storesDroppedOob;
+      return;
+    }
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
-    detail::Traffic(lane, slot_).bytesWritten += bytes;
+    traffic.bytesWritten += bytes;
     buffer_->TouchWrite(index * bytes, bytes);
     buffer_->At(index) = value;
   }
-  // InterlockedAdd without a return value: additions commute, so the result is deterministic.
+  // Atomics without a returned value (InterlockedAdd/Min/Max with no `original`): they commute,
+  // so the result is the same whichever lane comes first, and any dispatch may use them.
   void AtomicAdd(const LaneBase& lane, std::size_t index, T value) const {
-    static_assert(std::is_integral_v<T>, "atomics are defined on integer buffers");
-    if (lane.helper || index >= buffer_->Size()) return;
-    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
-    ++detail::Traffic(lane, slot_).atomics;
-    buffer_->TouchWrite(index * bytes, bytes);
-    std::atomic_ref<T>(buffer_->At(index)).fetch_add(value, std::memory_order_relaxed);
+    Rmw(lane, index, [value](T old) { return static_cast<T>(old + value); });
+  }
+  void AtomicMin(const LaneBase& lane, std::size_t index, T value) const {
+    Rmw(lane, index, [value](T old) { return std::min(old, value); });
+  }
+  void AtomicMax(const LaneBase& lane, std::size_t index, T value) const {
+    Rmw(lane, index, [value](T old) { return std::max(old, value); });
+  }
+  // Atomics returning the value before the operation (`original` in HLSL). The value depends on
+  // which lane came first, so only a dispatch whose chunks run serially may use them
+  // (Dispatch::SerialChunks; a KernelError elsewhere). Helper lanes and out-of-range indices
+  // change nothing and get 0 (D3D leaves that value undefined: SM5 imm_atomic_* remarks).
+  T InterlockedAdd(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedAdd's returned value");
+    return Rmw(lane, index, [value](T old) { return static_cast<T>(old + value); });
+  }
+  T InterlockedMin(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedMin's returned value");
+    return Rmw(lane, index, [value](T old) { return std::min(old, value); });
+  }
+  T InterlockedMax(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedMax's returned value");
+    return Rmw(lane, index, [value](T old) { return std::max(old, value); });
+  }
+  T InterlockedExchange(const LaneBase& lane, std::size_t index, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedExchange");
+    return Rmw(lane, index, [value](T) { return value; });
+  }
+  // Stores `value` only where the element equals `compare`.
+  T InterlockedCompareExchange(const LaneBase& lane, std::size_t index, T compare, T value) const {
+    detail::RequireSerialChunks(lane, "InterlockedCompareExchange");
+    return Rmw(lane, index, [compare, value](T old) { return old == compare ? value : old; });
   }
 
  private:
+  // One atomic read-modify-write; returns the value before it, or 0 when dropped.
+  template <typename Op>
+  T Rmw(const LaneBase& lane, std::size_t index, Op op) const {
+    static_assert(std::is_integral_v<T>, "atomics are defined on integer buffers");
+    if (lane.helper) return T{};
+    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
+    if (index >= buffer_->Size()) {
+      ++traffic.storesDroppedOob;
+      return T{};
+    }
+    const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
+    ++traffic.atomics;
+    buffer_->TouchWrite(index * bytes, bytes);
+    std::atomic_ref<T> element(buffer_->At(index));
+    T old = element.load(std::memory_order_relaxed);
+    while (!element.compare_exchange_weak(old, op(old), std::memory_order_relaxed)) {
+    }
+    return old;
+  }
+
   Buffer<T>* buffer_;
   BufferView<T> read_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 // Append without a returned index (D3D AppendStructuredBuffer::Append). Each append is one
@@ -287,14 +359,14 @@ class RwBufferView {
 template <typename T>
 class AppendView {
  public:
-  AppendView(int itemSlot, int counterSlot, int stagingIndex, int elementBytes)
-      : itemSlot_(itemSlot), counterSlot_(counterSlot), stagingIndex_(stagingIndex), elementBytes_(elementBytes) {}
+  AppendView(ViewBinding items, int counterSlot, int stagingIndex, int elementBytes)
+      : items_(std::move(items)), counterSlot_(counterSlot), stagingIndex_(stagingIndex), elementBytes_(elementBytes) {}
 
   void Append(const LaneBase& lane, const T& value) const {
     static_assert(std::is_trivially_copyable_v<T>);
     if (lane.helper) return;
+    detail::Traffic(lane, items_).bytesWritten += static_cast<std::uint64_t>(elementBytes_);
     ++detail::Traffic(lane, counterSlot_).atomics;
-    detail::Traffic(lane, itemSlot_).bytesWritten += static_cast<std::uint64_t>(elementBytes_);
     std::vector<std::byte>& staging = lane.chunk->appends[static_cast<std::size_t>(stagingIndex_)];
     const std::size_t at = staging.size();
     staging.resize(at + sizeof(T));
@@ -302,7 +374,24 @@ class AppendView {
   }
 
  private:
-  int itemSlot_, counterSlot_, stagingIndex_, elementBytes_;
+  ViewBinding items_;
+  int counterSlot_, stagingIndex_, elementBytes_;
+};
+
+// Increments a pass counter the dispatch declared (Dispatch::Counter): counted per chunk and
+// merged in chunk order, like traffic. Helper lanes do not count, as their stores do not land.
+class CounterView {
+ public:
+  explicit CounterView(ViewBinding counter) : counter_(std::move(counter)) {}
+
+  void Add(const LaneBase& lane, std::uint64_t n = 1) const {
+    detail::CheckOrigin(lane, counter_);
+    if (lane.helper) return;
+    lane.chunk->passCounters[static_cast<std::size_t>(counter_.slot)] += n;
+  }
+
+ private:
+  ViewBinding counter_;  // slot: the counter's index in the dispatch
 };
 
 // A stencil target for post passes: a one-sample depth/stencil surface whose per-pixel stencil a
@@ -325,10 +414,10 @@ class StencilBuffer : public Resource {
 // bins own their 8x8 tiles, so hi-stencil refreshes never race.
 class StencilView {
  public:
-  StencilView(StencilBuffer& stencil, int slot) : stencil_(&stencil), slot_(slot) {}
+  StencilView(StencilBuffer& stencil, ViewBinding binding) : stencil_(&stencil), binding_(std::move(binding)) {}
   void Store(const PixelLane& lane, std::uint8_t value) const {
     if (lane.helper || lane.x >= stencil_->Width() || lane.y >= stencil_->Height()) return;
-    detail::Traffic(lane, slot_).bytesWritten += 1;
+    detail::Traffic(lane, binding_).bytesWritten += 1;
     stencil_->TouchWrite(static_cast<std::size_t>(lane.y) * static_cast<std::size_t>(stencil_->Width()) +
                              static_cast<std::size_t>(lane.x),
                          1);
@@ -337,7 +426,7 @@ class StencilView {
 
  private:
   StencilBuffer* stencil_;
-  int slot_;
+  ViewBinding binding_;
 };
 
 }  // namespace sim

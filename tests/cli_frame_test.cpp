@@ -391,9 +391,10 @@ sim::DispatchReport HandBuiltReport() {
   report.lanes.lanesDeadEmpty = 84;
   report.lanes.wavesByActiveLanes[50] = 6;
   sim::ResourceTraffic colour{
-      .name = "colour", .access = "read", .bytesRead = 1200, .fetches = 300, .linesRead = 20};
+      .name = "colour", .access = sim::Access::Read, .bytesRead = 1200, .fetches = 300, .linesRead = 20};
   sim::ResourceTraffic queue{
-      .name = "queue", .access = "append", .bytesWritten = 40, .atomics = 10, .linesWritten = 1};
+      .name = "queue", .access = sim::Access::Append, .bytesWritten = 40, .atomics = 10, .storesDroppedOob = 3,
+      .linesWritten = 1};
   report.resources = {colour, queue};
   report.occupancy = {.wavesPerSimd = 8,
                       .maxWavesPerSimd = 10,
@@ -450,7 +451,10 @@ TEST(CliFrameDispatchOutput, JsonFollowsTheSchemaAndTheFieldTables) {
   ASSERT_EQ(d["resources"].size(), 2u);
   EXPECT_EQ(d["resources"][0]["name"], "colour");
   EXPECT_EQ(d["resources"][0]["dram_bytes"], 20 * 64);
+  EXPECT_EQ(d["resources"][0]["access"], "read");
+  EXPECT_EQ(d["resources"][1]["access"], "append");
   EXPECT_EQ(d["resources"][1]["atomics"], 10);
+  EXPECT_EQ(d["resources"][1]["stores_dropped_oob"], 3);
   EXPECT_EQ(d["occupancy"]["waves_per_simd"], 8);
   EXPECT_EQ(d["occupancy"]["limiter"], sim::LimiterName(sim::OccupancyLimiter::Vgpr));
   EXPECT_EQ(d["occupancy"]["lds_bytes_allocated"], 512);
@@ -486,6 +490,7 @@ TEST(CliFrameDispatchOutput, CsvRowsMatchTheHeader) {
   EXPECT_EQ(row["lanes/active"], "300");
   EXPECT_EQ(row["bytes_read"], "1200");
   EXPECT_EQ(row["bytes_written"], "40");
+  EXPECT_EQ(row["stores_dropped_oob"], "3");
   EXPECT_EQ(row["dram_bytes"], std::to_string(21 * 64));
   EXPECT_EQ(row["occupancy_waves_per_simd"], "8");
   EXPECT_EQ(row["occupancy_limiter"], sim::LimiterName(sim::OccupancyLimiter::Vgpr));
@@ -493,6 +498,35 @@ TEST(CliFrameDispatchOutput, CsvRowsMatchTheHeader) {
   EXPECT_EQ(row["estimate_bound"], "memory");
   EXPECT_EQ(rows[0].front(), "name");
   EXPECT_EQ(rows[0].back(), "estimate_bound");
+}
+
+TEST(CliFrameDispatchOutput, PassCountersReachJsonAndCsvByName) {
+  sim::DispatchReport smaa = HandBuiltReport();
+  smaa.passCounters = {{"smaa/search_steps", 1234}, {"smaa/edges", 56}};
+  sim::DispatchReport fxaa = HandBuiltReport();
+  fxaa.name = "fxaa";
+  fxaa.passCounters = {{"fxaa/horizontal_items", 7}, {"smaa/edges", 8}};
+  const sim::DispatchReport plain = HandBuiltReport();
+  const std::vector<study::DispatchRecord> reports{{smaa, "", "", ""}, {fxaa, "", "", ""}, {plain, "", "", ""}};
+
+  const nlohmann::ordered_json json =
+      cli::DispatchReportsJson(reports, sim::GpuConfigByName(sim::kDefaultGpuName), {});
+  EXPECT_EQ(json["dispatches"][0]["pass_counters"],
+            nlohmann::ordered_json({{"smaa/search_steps", 1234}, {"smaa/edges", 56}}));
+  EXPECT_EQ(json["dispatches"][1]["pass_counters"]["fxaa/horizontal_items"], 7);
+  EXPECT_EQ(json["dispatches"][2]["pass_counters"], nlohmann::ordered_json::object());
+
+  const std::vector<std::vector<std::string>> rows = ParseCsv(cli::DispatchReportsCsv(reports));
+  ASSERT_EQ(rows.size(), 4u);
+  // The union of names in first-seen order, after every fixed column.
+  const std::vector<std::string> tail(rows[0].end() - 3, rows[0].end());
+  EXPECT_EQ(tail, (std::vector<std::string>{"pass_counters/smaa/search_steps", "pass_counters/smaa/edges",
+                                            "pass_counters/fxaa/horizontal_items"}));
+  EXPECT_EQ(std::vector<std::string>(rows[1].end() - 3, rows[1].end()),
+            (std::vector<std::string>{"1234", "56", ""}));
+  EXPECT_EQ(std::vector<std::string>(rows[2].end() - 3, rows[2].end()), (std::vector<std::string>{"", "8", "7"}));
+  EXPECT_EQ(std::vector<std::string>(rows[3].end() - 3, rows[3].end()), (std::vector<std::string>{"", "", ""}));
+  for (const std::vector<std::string>& row : rows) EXPECT_EQ(row.size(), rows[0].size());
 }
 
 TEST(CliFrameDispatchOutput, SummaryNamesTheGpuAndAlignsItsColumns) {

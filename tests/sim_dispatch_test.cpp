@@ -6,6 +6,12 @@
 
 #include <tbb/global_control.h>
 
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
 #include "raster_test_util.h"
 #include "sim/dispatch.h"
 #include "sim_test_util.h"
@@ -312,6 +318,165 @@ TEST(SimDispatch, TrafficCountsRequestsAndDistinctLines) {
   EXPECT_EQ(r.DramBytes(), 2u * 4096 * 4);
   EXPECT_EQ(r.lanes.lanesActive, 4096u);
   EXPECT_FLOAT_EQ(r.heat.Utilization(3, 5), 1.0f);
+}
+
+TEST(SimDispatch, OutOfRangeUavStoresAreDroppedAndCountedPerResource) {
+  Machine machine = TestMachine();
+  Texture2D<float> target("target", 6, 5, 4, 0.0f);
+  Buffer<std::uint32_t> cells("cells", 10, 4, 0);
+  Dispatch d("test/oob", SmallKernel());
+  const RwTextureView<float> texture = d.ReadWrite(target);
+  const RwBufferView<std::uint32_t> buffer = d.ReadWrite(cells);
+  const DispatchReport r = machine.Compute(d, {.threads = {3, 1, 1}}, [&](ComputeLane& lane) {
+    for (const glm::ivec2 at : {glm::ivec2(-1, 0), glm::ivec2(0, -1), glm::ivec2(6, 0), glm::ivec2(0, 5)}) {
+      texture.Store(lane, at.x, at.y, 9.0f);
+    }
+    texture.Store(lane, lane.threadId.x, 0, 1.0f);
+    buffer.Store(lane, 10, 9u);
+    buffer.AtomicAdd(lane, 10, 1u);
+    buffer.Store(lane, static_cast<std::size_t>(lane.threadId.x), 1u);
+  });
+  EXPECT_EQ(r.resources[0].storesDroppedOob, 3u * 4);
+  EXPECT_EQ(r.resources[0].bytesWritten, 3u * 4);
+  EXPECT_EQ(r.resources[1].storesDroppedOob, 3u * 2);
+  EXPECT_EQ(r.resources[1].bytesWritten, 3u * 4);
+  EXPECT_EQ(r.resources[1].atomics, 0u);
+  float sum = 0.0f;
+  for (const float t : target.Texels()) sum += t;
+  EXPECT_EQ(sum, 3.0f);
+  EXPECT_EQ(cells.At(0) + cells.At(1) + cells.At(2), 3u);
+
+  // Helper lanes' stores are dropped by the helper rule, not counted as out of range: a 7x5
+  // target runs helper lanes at x = 7 and y = 5.
+  Texture2D<float> odd("odd", 7, 5, 4, 0.0f);
+  Dispatch pixels("test/oob-helpers", SmallKernel());
+  const RwTextureView<float> oddOut = pixels.ReadWrite(odd);
+  const DispatchReport p = machine.FullScreen(pixels, {.width = 7, .height = 5}, [&](PixelLane& lane) {
+    oddOut.Store(lane, lane.x, lane.y, 1.0f);
+  });
+  EXPECT_GT(p.lanes.lanesHelper, 0u);
+  EXPECT_EQ(p.resources[0].storesDroppedOob, 0u);
+}
+
+TEST(SimDispatch, AViewFromAnEarlierDispatchIsAKernelErrorNamingBoth) {
+  // Kernel rule violations are sim::KernelError (as an LDS overrun): catchable by the CLI, which
+  // reports the message and exits, and by tests. Aborting is for aasim's own invariants.
+  Machine machine = TestMachine();
+  Buffer<std::uint32_t> cells("cells", 4, 4, 0);
+  std::optional<RwBufferView<std::uint32_t>> stale;
+  {
+    Dispatch first("test/first", SmallKernel());
+    stale.emplace(first.ReadWrite(cells));
+    machine.Compute(first, {.threads = {1, 1, 1}}, [&](ComputeLane& lane) { stale->Store(lane, 0, 1u); });
+  }
+  Dispatch second("test/second", SmallKernel());
+  const RwBufferView<std::uint32_t> mine = second.ReadWrite(cells);
+  try {
+    machine.Compute(second, {.threads = {1, 1, 1}}, [&](ComputeLane& lane) {
+      mine.Store(lane, 1, 1u);
+      stale->Store(lane, 0, 2u);
+    });
+    FAIL() << "expected a KernelError";
+  } catch (const KernelError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("'test/first'"), std::string::npos) << message;
+    EXPECT_NE(message.find("'test/second'"), std::string::npos) << message;
+  }
+  EXPECT_EQ(cells.At(0), 1u);  // the stale store never landed
+
+  // Reading through a stale texture view in a pixel kernel is caught too.
+  Texture2D<float> texture("texture", 8, 8, 4, 0.0f);
+  std::optional<TextureView<float>> staleTexture;
+  {
+    Dispatch first("test/first-pixels", SmallKernel());
+    staleTexture.emplace(first.Read(texture));
+  }
+  Dispatch third("test/third", SmallKernel());
+  EXPECT_THROW(machine.FullScreen(third, {.width = 8, .height = 8},
+                                  [&](PixelLane& lane) { staleTexture->Load(lane, lane.x, lane.y); }),
+               KernelError);
+}
+
+// Reports print a binding's access modes under the names they always had.
+TEST(SimDispatch, AccessModesKeepTheirReportedNames) {
+  Machine machine = TestMachine();
+  auto names = [](const DispatchReport& r) {
+    std::vector<std::pair<std::string, std::string_view>> out;
+    for (const ResourceTraffic& t : r.resources) out.emplace_back(t.name, AccessName(t.access));
+    return out;
+  };
+  using Names = std::vector<std::pair<std::string, std::string_view>>;
+  Texture2D<float> in("in", 8, 8), out("out", 8, 8);
+  Buffer<std::uint32_t> both("both", 4), slotItems("slot-items", 4), args("args", 3, 4, 1);
+  AppendBuffer<std::uint32_t> queue("queue", 4);
+  SlotCounter counter("slots", 4);
+  Dispatch d("test/access", SmallKernel());
+  d.Read(in);
+  d.ReadWrite(out);
+  d.Append(queue);
+  d.Read(both);
+  d.ReadWrite(both);
+  d.Slots(counter);
+  d.SlotWrite(slotItems);
+  EXPECT_EQ(names(machine.Compute(d, {.threads = {1, 1, 1}}, [](ComputeLane&) {})),
+            (Names{{"in", "read"},
+                   {"out", "read-write"},
+                   {"queue", "append"},
+                   {"queue/counter", "append-counter"},
+                   {"both", "read-write"},
+                   {"slots", "slot-counter"},
+                   {"slot-items", "slot-write"}}));
+  Dispatch indirect("test/access-indirect", SmallKernel());
+  EXPECT_EQ(names(machine.ComputeIndirect(indirect, {.arguments = &args, .itemCount = &queue.Counter()},
+                                          [](ComputeLane&) {})),
+            (Names{{"args", "indirect-args"}, {"queue/counter", "read"}}));
+  StencilBuffer exported("exported", 8, 8), tested("tested", 8, 8);
+  Dispatch pixels("test/access-stencil", SmallKernel());
+  pixels.Stencil(exported);
+  EXPECT_EQ(names(machine.FullScreen(pixels, {.width = 8, .height = 8, .stencil = &tested}, [](PixelLane&) {})),
+            (Names{{"exported", "stencil"}, {"tested", "stencil-test"}}));
+}
+
+std::vector<DispatchReport> CountPassEvents(int threads) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  Machine machine = TestMachine();
+  Dispatch d("test/pass-counters", SmallKernel());
+  const CounterView odd = d.Counter("test/odd_threads");
+  const CounterView steps = d.Counter("test/steps");
+  const CounterView again = d.Counter("test/odd_threads");  // the same counter
+  machine.Compute(d, {.threads = {8192, 1, 1}}, [&](ComputeLane& lane) {
+    const auto i = static_cast<std::uint64_t>(lane.threadId.x);
+    if (i % 2 == 1) odd.Add(lane);
+    if (i % 6 == 1) again.Add(lane);
+    steps.Add(lane, i % 7);
+  });
+  return machine.Reports();
+}
+
+TEST(SimDispatch, PassCountersAreCountedPerChunkAndMergedLikeTraffic) {
+  const std::vector<DispatchReport> one = CountPassEvents(1);
+  const std::vector<DispatchReport> two = CountPassEvents(2);
+  testing::ExpectSameReports(one, two);
+  std::uint64_t odd = 0, steps = 0;
+  for (std::uint64_t i = 0; i < 8192; ++i) {
+    odd += (i % 2 == 1) + (i % 6 == 1);
+    steps += i % 7;
+  }
+  EXPECT_EQ(two[0].passCounters, (std::vector<PassCounter>{{"test/odd_threads", odd}, {"test/steps", steps}}));
+  DispatchReport changed = two[0];
+  ++changed.passCounters[1].value;
+  EXPECT_FALSE(changed.SameSimulation(two[0]));
+
+  // Helper lanes run the kernel but do not count, as their stores do not land.
+  Machine machine = TestMachine();
+  Dispatch pixels("test/pass-counters-pixels", SmallKernel());
+  const CounterView lanes = pixels.Counter("test/lanes");
+  const DispatchReport r = machine.FullScreen(pixels, {.width = 7, .height = 5}, [&](PixelLane& lane) { lanes.Add(lane); });
+  EXPECT_GT(r.lanes.lanesHelper, 0u);
+  ASSERT_EQ(r.passCounters.size(), 1u);
+  EXPECT_EQ(r.passCounters[0].value, r.lanes.lanesActive);
+  Dispatch unnamed("test/unnamed", SmallKernel());
+  EXPECT_THROW(unnamed.Counter(""), std::invalid_argument);
 }
 
 TEST(SimDispatch, AppendOverflowIsCountedNotLost) {

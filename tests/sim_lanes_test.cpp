@@ -1,6 +1,7 @@
 // What a kernel sees on its lane: the wave's EXEC mask (pixel, compute and indirect waves),
 // quad neighbours that are fully classified before any lane of the quad runs, and quad-neighbour
-// derivatives against closed-form gradients, helper lanes included.
+// derivatives of values computed in an earlier stage against closed-form gradients, helper lanes
+// included, without re-running the loads behind them.
 
 #include <gtest/gtest.h>
 
@@ -202,16 +203,16 @@ TEST(SimLanes, FullScreenDerivativesOfThePixelCentreAreOnePixel) {
     std::vector<int> bad(static_cast<std::size_t>((w + 1) * (h + 1)), 0);
     std::vector<int> helperRuns(bad.size(), 0);
     Dispatch d("test/centre-derivatives", SmallKernel());
-    const DispatchReport& r = machine.FullScreen(d, {.width = w, .height = h}, [&](PixelLane& lane) {
-      const auto pixel = static_cast<std::size_t>(lane.y * (w + 1) + lane.x);
-      const auto cx = [](const PixelLane& l) { return l.Centre().x; };
-      const auto cy = [](const PixelLane& l) { return l.Centre().y; };
-      bad[pixel] += lane.Ddx(cx) != 1.0f;
-      bad[pixel] += lane.Ddy(cy) != 1.0f;
-      bad[pixel] += lane.Ddx(cy) != 0.0f;
-      bad[pixel] += lane.Ddy(cx) != 0.0f;
-      helperRuns[pixel] += lane.helper;
-    });
+    const DispatchReport& r = machine.FullScreen(
+        d, {.width = w, .height = h}, [](PixelLane& lane) { lane.Private<glm::vec2>() = lane.Centre(); },
+        [&](PixelLane& lane) {
+          const auto pixel = static_cast<std::size_t>(lane.y * (w + 1) + lane.x);
+          bad[pixel] += lane.Ddx<glm::vec2>() != glm::vec2(1.0f, 0.0f);
+          bad[pixel] += lane.Ddy<glm::vec2>() != glm::vec2(0.0f, 1.0f);
+          bad[pixel] += lane.Ddx(&glm::vec2::y) != 0.0f;
+          bad[pixel] += lane.Ddy(&glm::vec2::y) != 1.0f;
+          helperRuns[pixel] += lane.helper;
+        });
     int helpers = 0;
     for (std::size_t i = 0; i < bad.size(); ++i) {
       EXPECT_EQ(bad[i], 0) << w << "x" << h << " pixel " << i % (w + 1) << "," << i / (w + 1);
@@ -222,6 +223,25 @@ TEST(SimLanes, FullScreenDerivativesOfThePixelCentreAreOnePixel) {
       EXPECT_GT(helpers, 0);
     }
   }
+}
+
+TEST(SimLanes, DerivativesExchangeValuesInsteadOfRerunningTheirLoads) {
+  // A ramp 2x + 3y: the loaded values' derivatives are 2 and 3, and each lane loads once.
+  const int w = 16, h = 8;
+  Texture2D<float> ramp("ramp", w, h, 4);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) ramp.At(x, y) = static_cast<float>(2 * x + 3 * y);
+  }
+  Machine machine = TestMachine();
+  Dispatch d("test/load-derivatives", SmallKernel());
+  const TextureView<float> in = d.Read(ramp);
+  int bad = 0;
+  const DispatchReport r = machine.FullScreen(
+      d, {.width = w, .height = h}, [&](PixelLane& lane) { lane.Private<float>() = in.Load(lane, lane.x, lane.y); },
+      [&](PixelLane& lane) { bad += lane.Ddx<float>() != 2.0f || lane.Ddy<float>() != 3.0f; });
+  EXPECT_EQ(bad, 0);
+  EXPECT_EQ(r.lanes.lanesActive, static_cast<std::uint64_t>(w * h));
+  EXPECT_EQ(r.resources[0].fetches, static_cast<std::uint64_t>(w * h));
 }
 
 TEST(SimLanes, DrawDerivativesOfAnInterpolatedAttributeMatchItsScreenGradient) {
@@ -251,15 +271,16 @@ TEST(SimLanes, DrawDerivativesOfAnInterpolatedAttributeMatchItsScreenGradient) {
   Dispatch d("test/attribute-derivatives", SmallKernel());
   std::vector<float> ddx(static_cast<std::size_t>(w * h), NAN), ddy(ddx.size(), NAN);
   std::vector<std::uint8_t> helper(ddx.size(), 0);
-  const DispatchReport& r =
-      machine.Draw(d, {.input = {clip, indices, 0}, .state = state, .depth = &depth}, [&](PixelLane& lane) {
-        const auto interpolate = [&](const PixelLane& l) {
-          const std::array<float, 3> b = l.Barycentrics();
-          return b[0] * attribute[0] + b[1] * attribute[1] + b[2] * attribute[2];
-        };
+  const DispatchReport& r = machine.Draw(
+      d, {.input = {clip, indices, 0}, .state = state, .depth = &depth},
+      [&](PixelLane& lane) {
+        const std::array<float, 3> b = lane.Barycentrics();
+        lane.Private<float>() = b[0] * attribute[0] + b[1] * attribute[1] + b[2] * attribute[2];
+      },
+      [&](PixelLane& lane) {
         const auto pixel = static_cast<std::size_t>(lane.y * w + lane.x);
-        ddx[pixel] = lane.Ddx(interpolate);
-        ddy[pixel] = lane.Ddy(interpolate);
+        ddx[pixel] = lane.Ddx<float>();
+        ddy[pixel] = lane.Ddy<float>();
         helper[pixel] = lane.helper;
         return fmask::Colour{};
       });
