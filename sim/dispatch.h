@@ -27,6 +27,7 @@
 #include "raster/rasterizer.h"
 #include "sim/atomics.h"
 #include "sim/counters.h"
+#include "sim/eqaa_resources.h"
 #include "sim/gpu_config.h"
 #include "sim/heat_map.h"
 #include "sim/lanes.h"
@@ -67,6 +68,11 @@ class Dispatch {
   template <typename T>
   AppendView<T> Append(AppendBuffer<T>& buffer);
   StencilView Stencil(StencilBuffer& stencil) { return {stencil, View(Bind(stencil, Access::StencilExport))}; }
+  // FMASK and the colour fragments of an EQAA surface, two read bindings (sim/eqaa_resources.h).
+  EqaaView Read(const EqaaResources& eqaa) {
+    const int fmask = Bind(eqaa.FmaskResource(), Access::Read);
+    return {eqaa, View(fmask), Bind(eqaa.FragmentResource(), Access::Read)};
+  }
   // Slot reservations from `counter`, and stores into the reserved slots of `buffer`
   // (sim/atomics.h).
   SlotCounterView Slots(SlotCounter& counter);
