@@ -18,6 +18,7 @@
 #include "cli/raster_options.h"
 #include "cli/run_command.h"
 #include "cli/run_options.h"
+#include "raster/raster_error.h"
 
 namespace {
 
@@ -43,6 +44,17 @@ int CheckStdout(int exitCode) {
   if (std::cout.flush() || exitCode != 0) return exitCode;
   std::cerr << "aasim: standard output: write error\n";
   return kExitRuntimeError;
+}
+
+// The rasterizer refuses an overdraw too deep for its quad stream without knowing the scene; the
+// command line adds the scene the user named, as the scene loader's messages start with it.
+template <typename Command>
+void NamingTheScene(const std::string& scene, Command command) {
+  try {
+    command();
+  } catch (const raster::QuadStreamError& error) {
+    throw raster::QuadStreamError(scene + ": " + error.what());
+  }
 }
 
 int RunAasim(int argc, char** argv) {
@@ -88,15 +100,15 @@ int RunAasim(int argc, char** argv) {
 
   try {
     if (raster->parsed()) {
-      cli::RunRasterCommand(rasterOptions, std::cout);
+      NamingTheScene(rasterOptions.scene, [&] { cli::RunRasterCommand(rasterOptions, std::cout); });
     } else if (frame->parsed()) {
-      cli::RunFrameCommand(frameOptions, std::cout);
+      NamingTheScene(frameOptions.scene, [&] { cli::RunFrameCommand(frameOptions, std::cout); });
     } else if (fixtures->parsed()) {
       cli::RunFixturesCommand(fixturesOptions, std::cout);
     } else if (passes->parsed()) {
       cli::RunPassesCommand(passesOptions, std::cout);
     } else {
-      cli::RunRunCommand(runOptions, std::cout, std::cerr);
+      NamingTheScene(runOptions.scene, [&] { cli::RunRunCommand(runOptions, std::cout, std::cerr); });
     }
   } catch (const std::bad_alloc&) {
     std::cerr << "aasim: out of memory\n";

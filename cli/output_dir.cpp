@@ -36,8 +36,8 @@ LiveDirs& Live() {
 }
 
 // Hidden and tagged with the process id, so concurrent runs into one directory do not collide
-// and a crashed run's leftovers are recognisable: `tag` is "tmp" for new files, "old" for the
-// previous files during a commit.
+// and a crashed run's leftovers are recognisable: `tag` is "tmp" for new files (the staging
+// folder, the probe), "old" for the previous files during a commit.
 fs::path HiddenName(const fs::path& dir, std::string_view fileName, std::string_view tag) {
   std::string name(".");  // appended piecewise: GCC 12 flags "." + string with -Wrestrict
   name += fileName;
@@ -102,10 +102,31 @@ void PutBack(const std::vector<fs::path>& kept) noexcept {
   }
 }
 
+// One staging folder per OutputDir of the process; the caller holds Live().mutex.
+std::string StagingName() {
+  static unsigned next = 0;
+  return "staging" + std::to_string(next++);
+}
+
+// Writers open staged files by path, outside any lock, and create them (O_CREAT), so removing a
+// staged file cannot stop a writer from creating it again a moment later. Renaming the folder
+// first can: a file opened before the rename moves with the folder and is removed with it, an
+// open after it finds no folder and fails. So nothing under `staging` survives this.
+void RemoveStagingFolder(const fs::path& staging) noexcept {
+  std::error_code error;
+  if (!fs::exists(fs::symlink_status(staging, error))) return;
+  fs::path gone = staging;
+  gone += "-gone";
+  fs::rename(staging, gone, error);
+  const fs::path doomed = error ? staging : gone;  // not renamed: "-gone" is a reused pid's leftover
+  fs::remove_all(doomed, error);
+}
+
 }  // namespace
 
 OutputDir::OutputDir(fs::path dir) : dir_(std::move(dir)) {
   const std::lock_guard lock(Live().mutex);
+  staging_ = HiddenName(dir_, StagingName(), "tmp");
   try {
     CreateFolders(dir_);
     std::error_code error;
@@ -130,9 +151,13 @@ fs::path OutputDir::Stage(std::string_view fileName) {
   const std::lock_guard lock(Live().mutex);
   const fs::path final = dir_ / fileName;
   CreateFolders(final.parent_path());
+  const fs::path temporary = staging_ / fileName;
+  std::error_code error;
+  fs::create_directories(temporary.parent_path(), error);
+  if (error) throw OutputError(Describe(temporary.parent_path(), "cannot create directory", error.message()));
   // Recorded before anything is written, so a writer that fails halfway is cleaned up too.
-  staged_.push_back({HiddenName(final.parent_path(), final.filename().string(), "tmp"), final});
-  return staged_.back().temporary;
+  staged_.push_back({temporary, final});
+  return temporary;
 }
 
 void OutputDir::CreateFolders(const fs::path& folder) {
@@ -157,6 +182,7 @@ std::vector<fs::path> OutputDir::Commit(std::string_view manifest) {
     for (const fs::path& final : kept) fs::remove(BackupName(final), ignored);
     staged_.clear();
     createdFolders_.clear();
+    RemoveStagingFolder(staging_);
     return committed;
   } catch (const OutputError&) {
     PutBack(kept);
@@ -204,10 +230,7 @@ std::vector<fs::path> OutputDir::MoveNewFilesIn() const {
 }
 
 void OutputDir::RemoveTemporaries() noexcept {
-  for (const StagedFile& file : staged_) {
-    std::error_code ignored;
-    fs::remove(file.temporary, ignored);
-  }
+  RemoveStagingFolder(staging_);
   staged_.clear();
   // Newest first, so a folder is empty by the time it is removed; remove() leaves non-empty
   // folders (someone else's files) alone.
@@ -221,9 +244,11 @@ void OutputDir::RemoveTemporaries() noexcept {
 void OutputDir::RemoveTemporariesOnSignals() {
   sigset_t signals;
   sigemptyset(&signals);
-  for (const int signal : {SIGINT, SIGTERM}) {
+  // SIGHUP too: a closed terminal or an ended ssh session is an interruption like any other.
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction current {};
-    // A shell starts background jobs with SIGINT ignored; they must stay immune to it.
+    // A shell starts background jobs with SIGINT ignored, nohup ignores SIGHUP: they must stay
+    // immune to it.
     if (sigaction(signal, nullptr, &current) == 0 && current.sa_handler != SIG_IGN) sigaddset(&signals, signal);
   }
   // Blocked here, before any other thread exists, so every thread inherits the mask and the

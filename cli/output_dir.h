@@ -1,5 +1,5 @@
 #pragma once
-// All-or-nothing output sets: every file of a run is written under a hidden temporary name in
+// All-or-nothing output sets: every file of a run is written into a hidden staging folder in
 // the output directory and renamed into place only when all of them were written, so a failed
 // or interrupted run never leaves a partial or corrupt set behind and never loses the previous
 // set (see docs/cli.md, "Output sets").
@@ -34,9 +34,11 @@ class OutputDir {
   // thrown and the previous files are back as they were. Signals wait until it is done.
   std::vector<std::filesystem::path> Commit(std::string_view manifest = {});
 
-  // Makes SIGINT and SIGTERM remove every uncommitted staged file before the process dies of
-  // the signal (exit status 128 + signal). Call first thing in main(), before any thread
-  // starts: the signals are blocked in every thread and taken by one thread of its own.
+  // Makes SIGINT, SIGTERM and SIGHUP remove every uncommitted staged file before the process
+  // dies of the signal (exit status 128 + signal). Call first thing in main(), before any
+  // thread starts: the signals are blocked in every thread and taken by one thread of its own.
+  // A writer still creating a staged file meanwhile cannot leave it behind (output_dir.cpp,
+  // RemoveStagingFolder).
   static void RemoveTemporariesOnSignals();
 
  private:
@@ -51,6 +53,7 @@ class OutputDir {
   void RemoveTemporaries() noexcept;
 
   std::filesystem::path dir_;
+  std::filesystem::path staging_;  // hidden, in dir_; every temporary lives under it
   std::vector<StagedFile> staged_;
   std::vector<std::filesystem::path> createdFolders_;  // in creation order
 };

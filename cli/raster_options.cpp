@@ -132,6 +132,15 @@ void CheckMemory(const RasterCommandOptions& options) {
   }
 }
 
+// OpenEXR's scan-line writer (ImfOutputFile.cpp, ImfZipCompressor.cpp, ImfZip.cpp) fills one ZIP
+// chunk of 16 rows of every channel, and the compressor holds an output buffer of 1.01 times that
+// plus a scratch copy: about 3 x 16 rows, 49 to cover the 1 % and the fixed slack. Per image
+// column, for `channels` 32-bit channels.
+std::uint64_t ExrWriterBytesPerRow(int channels) {
+  constexpr std::uint64_t kRowsHeld = 49;
+  return kRowsHeld * std::uint64_t(channels) * 4u;
+}
+
 // All of `text` as a decimal integer.
 bool ParseWholeInt(std::string_view text, int& value) {
   const char* end = text.data() + text.size();
@@ -193,9 +202,16 @@ std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthS
   const std::uint64_t images = 4u * (depthSamples + 2u) + 4u;  // EXR channels, two PNGs
   std::uint64_t perPixel =
       SurfaceBytesPerPixel(samples, depthSamples, fragments) + ownership + images;
+  // depth.exr: Z anchors, Z and coverage; samples.exr: 2S UINT channels in strips.
+  std::uint64_t rows = ExrWriterBytesPerRow(depthSamples + 2) +
+                       ExrWriterBytesPerRow(2 * samples) +
+                       std::uint64_t(raster::kBinSize) * 2u * samples * sizeof(std::uint32_t);
   // eqaa.exr: RGBA, S codes, fragments, unknown; resolve.png and fmask.png are RGB.
-  if (fragments > 0) perPixel += 4u * (samples + 6u) + 6u;
-  return pixels * perPixel;
+  if (fragments > 0) {
+    perPixel += 4u * (samples + 6u) + 6u;
+    rows += ExrWriterBytesPerRow(samples + 6);
+  }
+  return pixels * perPixel + std::uint64_t(width) * rows;
 }
 
 void ResolveRasterOptions(RasterCommandOptions& options) {

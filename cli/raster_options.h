@@ -47,7 +47,9 @@ void ResolveRasterOptions(RasterCommandOptions& options);
 
 // Bytes held at once: the depth surface (S plane indices, Z float anchors and a stencil byte
 // per pixel), one layer of quads, the ownership buffers and the output images; with
-// fragments > 0 also the EQAA surface (FMASK element, F slots, S causes) and its images.
+// fragments > 0 also the EQAA surface (FMASK element, F slots, S causes) and its images. Plus,
+// per image column, the EXR writers' buffers (OpenEXR's 16-row ZIP chunk and compressor, and
+// samples.exr's 32-row strip of 2S channels), which dominate for wide, short images.
 std::uint64_t EstimateRasterBytes(int width, int height, int samples, int depthSamples,
                                   int fragments);
 

@@ -81,6 +81,13 @@ def png(width, height, rows):
             + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
 # 20000 x 20000 grey in the header, a few rows of data: the size check must come first.
 write("image", "20000x20000-header.png", png(20000, 20000, b"\0" * 20001 * 4))
+# A real 4 x 4 JPEG whose frame header (SOF0) claims 8192 x 8192: stb_image would decode the
+# missing data as zeros; refused first by texels per byte (kMaxJpegTexelsPerByte).
+with open(os.path.join(HERE, "corpus", "image", "rgb-4x4.jpg"), "rb") as f:
+    jpeg = bytearray(f.read())
+sof = jpeg.index(b"\xff\xc0")
+jpeg[sof + 5:sof + 9] = struct.pack(">HH", 8192, 8192)
+write("image", "8192x8192-header.jpg", bytes(jpeg))
 
 # --- sample patterns ----------------------------------------------------------------------------
 write("sample_pattern", "uniform-4.json",

@@ -183,9 +183,10 @@ class BinRasterizer {
   // so the error is as deterministic as the quads themselves.
   void Collect(const QuadFragment& quad) {
     if (quadsCollected_.fetch_add(1, std::memory_order_relaxed) >= options_.maxQuads) {
-      throw RasterError("the draw produces more than " + std::to_string(options_.maxQuads) +
-                        " quads, the most one draw may stream (kMaxQuadStreamBytes, raster/limits.h):"
-                        " overdraw too deep for this resolution");
+      throw QuadStreamError("the draw streams more than " + std::to_string(options_.maxQuads) + " quads of " +
+                            std::to_string(sizeof(QuadFragment)) + " bytes, the limit kMaxQuadStreamBytes (" +
+                            std::to_string(kMaxQuadStreamBytes) + " bytes, raster/limits.h) allows: overdraw too "
+                            "deep for " + std::to_string(width_) + "x" + std::to_string(height_));
     }
     quads_.push_back(quad);
   }

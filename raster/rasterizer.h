@@ -60,7 +60,7 @@ struct RasterResult {
 
 struct RasterOptions {
   bool collectQuads = true;
-  // Past this many collected quads Run throws RasterError (kMaxQuadStreamBytes).
+  // Past this many collected quads Run throws QuadStreamError (kMaxQuadStreamBytes).
   std::size_t maxQuads = kMaxQuadStreamBytes / sizeof(QuadFragment);
 };
 

@@ -116,6 +116,13 @@ ImageSize ReadImageSize(std::span<const std::uint8_t> encoded, const std::string
                      " texels, more than the " + std::to_string(kMaxImageTexels) +
                      " aasim decodes");
   }
+  // EncodedLength bounded the size by INT_MAX above, so the product cannot overflow.
+  if (SniffImageFormat(encoded) == ImageFormat::Jpeg && texels > kMaxJpegTexelsPerByte * encoded.size()) {
+    throw SceneError(name + ": JPEG image size " + dimensions + " is " + std::to_string(texels) + " texels in " +
+                     std::to_string(encoded.size()) + " bytes, more than the " +
+                     std::to_string(kMaxJpegTexelsPerByte) +
+                     " texels per byte any JPEG holds (each 8x8 block costs at least one bit): truncated or hostile");
+  }
   return size;
 }
 

@@ -31,6 +31,13 @@ Texture DecodeTexels(std::string name, int width, int height, int channels, int 
 // claim 6.4 GB.
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr std::size_t kMaxImageTexels = std::size_t{1} << 26;
+// And a JPEG may declare at most 512 texels per byte of file. Huffman coding (ITU-T T.81 F.1.2,
+// and G.1.2.1 for a progressive DC scan; stb_image reads no arithmetic-coded JPEG) spends at
+// least one bit on every 8x8 block of the full-resolution component, its DC difference, so no
+// real JPEG holds more than 64 x 8 texels per byte; a flat colour written by stb_image_write comes
+// to 62 at 1024 x 1024. stb_image decodes data that ends early as if zeros followed, so without
+// this bound a 615-byte file declaring 8192 x 8192 decoded for 1.8 s into 1.2 GiB.
+inline constexpr std::size_t kMaxJpegTexelsPerByte = 512;
 
 enum class ImageFormat { Png, Jpeg, Other };
 
@@ -43,7 +50,8 @@ struct ImageSize {
 };
 
 // A PNG's or JPEG's dimensions from its header, without decoding. Throws SceneError naming
-// `name` for another format, an unreadable header, or dimensions beyond the limits above.
+// `name` for another format, an unreadable header, or dimensions beyond the limits above
+// (kMaxJpegTexelsPerByte against `encoded`'s size for a JPEG).
 ImageSize ReadImageSize(std::span<const std::uint8_t> encoded, const std::string& name);
 
 // Decodes a PNG or JPEG (8 or 16 bits per channel, grey, grey + alpha, RGB, RGBA or palette)

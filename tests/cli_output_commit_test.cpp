@@ -1,6 +1,7 @@
 // Output sets (docs/cli.md, "Output sets"): a failed commit leaves the previous set as it was,
-// SIGTERM at any moment of `run` and `fixtures` leaves the previous or the new complete set and
-// no hidden file, a failed `raster` leaves no directory, and a full stdout is an error.
+// SIGTERM or SIGHUP at any moment of `run` and `fixtures` leaves the previous or the new complete
+// set and no hidden file, even while a writer keeps creating its staged file, a failed `raster`
+// leaves no directory, and a full stdout is an error.
 
 #include <gtest/gtest.h>
 
@@ -132,7 +133,66 @@ TEST_F(CliOutputCommit, AFullStdoutIsAnError) {
   }
 }
 
-// --- SIGTERM at random moments ---
+// What the signal cleanup relies on: once a set is given up, a writer that opens its staged path
+// only then (it got the path before) creates nothing.
+TEST_F(CliOutputCommit, AStagedPathCannotBeCreatedOnceTheSetIsGivenUp) {
+  const fs::path dir = scratch_ / "set";
+  fs::create_directory(dir);
+  fs::path staged;
+  {
+    cli::OutputDir out(dir);
+    staged = out.Stage("late.bin");
+  }
+  std::ofstream(staged) << "x";
+  EXPECT_EQ(Names(TakeSnapshot(dir)), std::vector<std::string>{});
+}
+
+// --- Signals ---
+
+// The signals that would reach the process: one ignored here (nohup, a background job) stays
+// ignored in the child, which would then never die of it.
+std::vector<int> CatchableSignals() {
+  std::vector<int> signals;
+  for (const int signal : {SIGTERM, SIGHUP}) {
+    struct sigaction current {};
+    if (sigaction(signal, nullptr, &current) == 0 && current.sa_handler != SIG_IGN) signals.push_back(signal);
+  }
+  return signals;
+}
+
+// In a forked child: a set of many staged files (as `fixtures` has), the first of which a writer
+// rewrites by path as fast as it can while the process signals itself, so the writer has the
+// whole cleanup of the others to create the first one again.
+[[noreturn]] void SignalWhileAWriterKeepsCreatingItsFile(const fs::path& dir, int signal) {
+  cli::OutputDir::RemoveTemporariesOnSignals();
+  cli::OutputDir out(dir);  // never destroyed: this never returns, only the signal cleans up
+  const fs::path busy = out.Stage("busy.bin");
+  for (int file = 0; file < 500; ++file) std::ofstream(out.Stage("done" + std::to_string(file))) << "x";
+  std::thread([busy] {
+    for (;;) std::ofstream(busy) << "x";
+  }).detach();
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(::getpid(), signal);
+  std::this_thread::sleep_for(std::chrono::seconds(20));  // the signal ends the process long before
+  std::_Exit(0);
+}
+
+TEST_F(CliOutputCommit, ASignalLeavesNoStagedFileWhileAWriterKeepsCreatingIt) {
+  for (const int signal : CatchableSignals()) {
+    for (int round = 0; round < 4; ++round) {
+      SCOPED_TRACE("signal " + std::to_string(signal) + ", round " + std::to_string(round));
+      // An existing directory: one the run created would go with its files, taking the path from
+      // under the writer.
+      const fs::path dir = scratch_ / "set";
+      fs::create_directory(dir);
+      EXPECT_EXIT(SignalWhileAWriterKeepsCreatingItsFile(dir, signal), ::testing::KilledBySignal(signal), "");
+      EXPECT_EQ(Names(TakeSnapshot(dir)), std::vector<std::string>{});
+      fs::remove_all(dir);
+    }
+  }
+}
+
+// --- SIGTERM or SIGHUP at random moments ---
 
 // Started directly (no shell in between to take the signal), output in `scratch`.
 pid_t Spawn(const std::vector<std::string>& args, const fs::path& scratch) {
@@ -153,12 +213,13 @@ pid_t Spawn(const std::vector<std::string>& args, const fs::path& scratch) {
   return pid;
 }
 
-// The wait status of a run sent SIGTERM after `delay` (if still running by then).
-int TerminateAfter(const std::vector<std::string>& args, const fs::path& scratch, std::chrono::microseconds delay) {
+// The wait status of a run sent `signal` after `delay` (if still running by then).
+int SignalAfter(const std::vector<std::string>& args, const fs::path& scratch, std::chrono::microseconds delay,
+                int signal) {
   const pid_t pid = Spawn(args, scratch);
   if (pid <= 0) return -1;  // kill(-1) would signal every process of the user
   std::this_thread::sleep_for(delay);
-  ::kill(pid, SIGTERM);
+  ::kill(pid, signal);
   int status = 0;
   ::waitpid(pid, &status, 0);
   return status;
@@ -174,7 +235,8 @@ std::chrono::microseconds TimedRun(const std::vector<std::string>& args, const f
 }
 
 // After a good run into `out`, interrupts the same run at `points` random moments spread over
-// its duration, every third time into a directory that does not exist yet. Each time `out` must
+// its duration, every third time into a directory that does not exist yet, with the catchable
+// signals in turn. Each time `out` must
 // hold a complete set again (the same bytes when `deterministic`; `run`'s reports carry
 // timings) and the new directory a complete set or nothing.
 void ExpectOldOrNewSet(const std::vector<std::string>& command, bool deterministic, const fs::path& scratch,
@@ -186,15 +248,19 @@ void ExpectOldOrNewSet(const std::vector<std::string>& command, bool determinist
   const Snapshot good = TakeSnapshot(out);
   std::mt19937 random(10);
   std::uniform_int_distribution<std::int64_t> moment(0, duration.count() * 11 / 10);
+  const std::vector<int> signals = CatchableSignals();
+  ASSERT_FALSE(signals.empty());
   for (int point = 0; point < points; ++point) {
     const std::chrono::microseconds delay(moment(random));
     const bool intoFresh = point % 3 == 0;
     const fs::path dir = intoFresh ? fresh : out;
+    const int signal = signals[static_cast<std::size_t>(point) % signals.size()];
     std::vector<std::string> interrupted = command;
     interrupted.insert(interrupted.end(), {"--out", dir.string()});
-    const int status = TerminateAfter(interrupted, scratch, delay);
-    SCOPED_TRACE("SIGTERM after " + std::to_string(delay.count()) + " us into " + dir.string());
-    EXPECT_TRUE((WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) || (WIFEXITED(status) && WEXITSTATUS(status) == 0))
+    const int status = SignalAfter(interrupted, scratch, delay, signal);
+    SCOPED_TRACE("signal " + std::to_string(signal) + " after " + std::to_string(delay.count()) + " us into " +
+                 dir.string());
+    EXPECT_TRUE((WIFSIGNALED(status) && WTERMSIG(status) == signal) || (WIFEXITED(status) && WEXITSTATUS(status) == 0))
         << status << ": " << ReadText(scratch / "stderr.txt");
     if (intoFresh && !fs::exists(fresh)) continue;
     const Snapshot after = TakeSnapshot(dir);
@@ -206,13 +272,13 @@ void ExpectOldOrNewSet(const std::vector<std::string>& command, bool determinist
   }
 }
 
-TEST_F(CliOutputCommit, SigtermDuringRunLeavesTheOldOrTheNewSet) {
+TEST_F(CliOutputCommit, SignalDuringRunLeavesTheOldOrTheNewSet) {
   ExpectOldOrNewSet(
       {"run", "--quick", "--width", "160", "--height", "96", "--cache", (scratch_ / "cache").string()}, false,
       scratch_, 8);
 }
 
-TEST_F(CliOutputCommit, SigtermDuringFixturesLeavesTheOldOrTheNewSet) {
+TEST_F(CliOutputCommit, SignalDuringFixturesLeavesTheOldOrTheNewSet) {
   ExpectOldOrNewSet({"fixtures"}, true, scratch_, 5);
 }
 

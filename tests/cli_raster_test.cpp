@@ -9,7 +9,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -36,6 +35,7 @@
 #include "raster/rasterizer.h"
 #include "scenes/scene.h"
 #include "cli_test_util.h"
+#include "scenes_test_util.h"
 
 namespace {
 
@@ -50,65 +50,7 @@ using cli::testing::ReadExrChannels;
 using cli::testing::ReadText;
 using cli::testing::RunAasim;
 using cli::testing::WriteFile;
-
-// --- Small glTF files with the geometry in a base64 data URI. ---
-
-std::string Base64(const std::vector<std::uint8_t>& bytes) {
-  static constexpr char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t left = bytes.size() - i;
-    const std::uint32_t chunk = (std::uint32_t{bytes[i]} << 16) |
-                                (left > 1 ? std::uint32_t{bytes[i + 1]} << 8 : 0u) |
-                                (left > 2 ? std::uint32_t{bytes[i + 2]} : 0u);
-    text += kAlphabet[(chunk >> 18) & 63];
-    text += kAlphabet[(chunk >> 12) & 63];
-    text += left > 1 ? kAlphabet[(chunk >> 6) & 63] : '=';
-    text += left > 2 ? kAlphabet[chunk & 63] : '=';
-  }
-  return text;
-}
-
-template <typename T>
-void AppendBytes(std::vector<std::uint8_t>& bytes, const std::vector<T>& values) {
-  const std::size_t offset = bytes.size();
-  bytes.resize(offset + values.size() * sizeof(T));
-  std::memcpy(bytes.data() + offset, values.data(), values.size() * sizeof(T));
-}
-
-// One mesh, one triangle-list primitive: float VEC3 positions and uint32 indices.
-std::string TriangleGltf(const std::vector<float>& positions,
-                         const std::vector<std::uint32_t>& indices) {
-  std::vector<std::uint8_t> buffer;
-  AppendBytes(buffer, positions);
-  const std::size_t positionBytes = buffer.size();
-  AppendBytes(buffer, indices);
-  const nlohmann::json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"buffers",
-       {{{"byteLength", buffer.size()},
-         {"uri", "data:application/octet-stream;base64," + Base64(buffer)}}}},
-      {"bufferViews",
-       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", positionBytes}},
-        {{"buffer", 0},
-         {"byteOffset", positionBytes},
-         {"byteLength", buffer.size() - positionBytes}}}},
-      {"accessors",
-       {{{"bufferView", 0},
-         {"componentType", 5126},
-         {"count", positions.size() / 3},
-         {"type", "VEC3"}},
-        {{"bufferView", 1},
-         {"componentType", 5125},
-         {"count", indices.size()},
-         {"type", "SCALAR"}}}},
-      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
-      {"nodes", {{{"mesh", 0}}}},
-      {"scenes", {{{"nodes", {0}}}}},
-      {"scene", 0}};
-  return gltf.dump();
-}
+using scenes_test::TriangleGltf;
 
 // x, y, z of three vertices.
 const std::vector<float> kTrianglePositions{

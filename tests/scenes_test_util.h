@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace scenes_test {
 
@@ -24,6 +27,36 @@ inline std::string Base64(const std::vector<std::uint8_t>& bytes) {
     }
   }
   return text;
+}
+
+template <typename T>
+void AppendBytes(std::vector<std::uint8_t>& bytes, const std::vector<T>& values) {
+  const std::size_t offset = bytes.size();
+  bytes.resize(offset + values.size() * sizeof(T));
+  std::memcpy(bytes.data() + offset, values.data(), values.size() * sizeof(T));
+}
+
+// One mesh, one triangle-list primitive: float VEC3 positions and uint32 indices, in a base64
+// data URI.
+inline std::string TriangleGltf(const std::vector<float>& positions, const std::vector<std::uint32_t>& indices) {
+  std::vector<std::uint8_t> buffer;
+  AppendBytes(buffer, positions);
+  const std::size_t positionBytes = buffer.size();
+  AppendBytes(buffer, indices);
+  const nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + Base64(buffer)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", positionBytes}},
+        {{"buffer", 0}, {"byteOffset", positionBytes}, {"byteLength", buffer.size() - positionBytes}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  return gltf.dump();
 }
 
 }  // namespace scenes_test
