@@ -196,20 +196,9 @@ TEST_F(CliOutputCommit, ASignalLeavesNoStagedFileWhileAWriterKeepsCreatingIt) {
 
 // Started directly (no shell in between to take the signal), output in `scratch`.
 pid_t Spawn(const std::vector<std::string>& args, const fs::path& scratch) {
-  const std::string outPath = (scratch / "stdout.txt").string(), errPath = (scratch / "stderr.txt").string();
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> strings{AASIM_BINARY};
-  strings.insert(strings.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : strings) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int error = posix_spawn(&pid, AASIM_BINARY, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(error, 0);
+  const pid_t pid =
+      cli::testing::SpawnAasim(args, (scratch / "stdout.txt").string(), (scratch / "stderr.txt").string());
+  EXPECT_GT(pid, 0);
   return pid;
 }
 

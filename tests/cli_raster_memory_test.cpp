@@ -38,20 +38,9 @@ std::vector<std::string> Args(const Size& size, const fs::path& out) {
 
 // Peak resident set of one successful run, in bytes (wait4's ru_maxrss is in KiB on Linux).
 std::uint64_t PeakResidentBytes(const std::vector<std::string>& args, const fs::path& scratch) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
   const std::string log = (scratch / "log.txt").string();
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  std::vector<std::string> strings{AASIM_BINARY};
-  strings.insert(strings.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : strings) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int error = posix_spawn(&pid, AASIM_BINARY, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0 || pid <= 0) {
+  const pid_t pid = cli::testing::SpawnAasim(args, log, log);
+  if (pid <= 0) {
     ADD_FAILURE() << "cannot start " << AASIM_BINARY;
     return 0;
   }
