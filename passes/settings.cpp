@@ -120,7 +120,9 @@ std::vector<std::string> SplitPassList(std::string_view text) {
 PassSettings ResolveSettings(const PassSpec& spec, std::span<const SettingInfo> schema,
                              std::span<const Preset> presets) {
   PassSettings settings(spec.name, schema);
-  for (const auto& [key, value] : spec.values) {
+  for (const auto& entry : spec.values) {
+    const std::string& key = entry.first;
+    const std::string& value = entry.second;
     if (key != "preset" || presets.empty()) continue;
     const auto preset = std::find_if(presets.begin(), presets.end(), [&](const Preset& p) { return p.name == value; });
     if (preset == presets.end()) {
