@@ -14,14 +14,17 @@ namespace sim {
 
 namespace {
 
+void CheckPatternFits(const raster::SamplePattern& pattern, const fmask::EqaaConfig& eqaa) {
+  if (pattern.Count() != eqaa.coverageSamples) {
+    throw std::invalid_argument("sample pattern '" + pattern.Name() + "' has " + std::to_string(pattern.Count()) +
+                                " samples, the EQAA mode " + fmask::EqaaName(eqaa) + " needs " +
+                                std::to_string(eqaa.coverageSamples));
+  }
+}
+
 raster::DepthSurfaceConfig DepthConfig(const FrameSettings& settings) {
   fmask::ValidateEqaaConfig(settings.eqaa);
-  if (settings.pattern.Count() != settings.eqaa.coverageSamples) {
-    throw std::invalid_argument("sample pattern '" + settings.pattern.Name() + "' has " +
-                                std::to_string(settings.pattern.Count()) + " samples, the EQAA mode " +
-                                fmask::EqaaName(settings.eqaa) + " needs " +
-                                std::to_string(settings.eqaa.coverageSamples));
-  }
+  CheckPatternFits(settings.pattern, settings.eqaa);
   raster::DepthSurfaceConfig config;
   config.width = settings.width;
   config.height = settings.height;
@@ -116,11 +119,9 @@ void FramePipeline::ClearTargets() {
 DispatchReport FramePipeline::Render(const FrameGeometry& geometry, const FrameParams& params) {
   Validate(geometry);
   if (params.pattern != nullptr) {
-    FrameSettings next = settings_;
-    next.pattern = *params.pattern;
-    DepthConfig(next);  // the sample count must match the surfaces
-    depth_.SetPattern(next.pattern);
-    settings_ = std::move(next);
+    CheckPatternFits(*params.pattern, settings_.eqaa);
+    depth_.SetPattern(*params.pattern);
+    settings_.pattern = *params.pattern;
   }
   frameIndex_ = params.frameIndex;
   ClearTargets();
