@@ -159,6 +159,7 @@ nlohmann::ordered_json PassJson(const Study& study, const StudyPass& pass) {
           {"folder", kImages + pass.image.folder},
           {"settings", pass.settings},
           {"edge_pixels", pass.workItems},
+          {"work_set", {{"pixels", pass.workSet.pixels}, {"quads", pass.workSet.quads}, {"tiles_8x8", pass.workSet.tiles}}},
           {"strategies_identical", pass.difference.Identical()},
           {"differing_pixels", pass.difference.pixels.pixels},
           {"difference", pass.difference.Identical() ? nlohmann::ordered_json(nullptr)
@@ -392,6 +393,20 @@ std::span<const study::DispatchRecord> RunDispatches(const Study& study, const S
   return std::span(study.dispatches).subspan(run.firstDispatch, run.endDispatch - run.firstDispatch);
 }
 
+// Seed 000's argument for queues, with this frame's numbers: a stencil-culled shader runs whole
+// quads and packs them into waves by 8x8 hi-stencil tile, so the fewer work-set pixels per quad
+// and per tile, the more of its lanes idle; a queue packs the pixels densely.
+std::string ScatterParagraph(const passes::WorkSetShape& shape) {
+  if (shape.pixels == 0) return "The work set is empty.";
+  const double perQuad = double(shape.pixels) / double(shape.quads);
+  const double perTile = double(shape.pixels) / double(shape.tiles);
+  return "The work set is scattered over " + std::to_string(shape.quads) + " quads and " +
+         std::to_string(shape.tiles) + " 8x8 tiles: " + FormatFixed(perQuad, 2) + " pixels per touched quad (of 4) and " +
+         FormatFixed(perTile, 1) + " per touched tile (of 64). The stencil strategy launches every lane of a touched "
+         "quad, so at best " + FormatPercent(shape.pixels, 4 * shape.quads) + "% of its lanes work; the queue packs 64 work-set pixels "
+         "per wave.";
+}
+
 ReportSection PassSection(const Study& study, const StudyPass& pass) {
   ReportSection section{"Dispatch strategies: " + pass.name, {}, {}, {}, {}};
   section.paragraphs.push_back(
@@ -399,6 +414,7 @@ ReportSection PassSection(const Study& study, const StudyPass& pass) {
       std::to_string(pass.workItems) + " pixels in its work set. Stencil: a full-screen pixel shader culled by "
       "stencil (quads run when any pixel passes, 16 quads per wave). Queue: the work-set pixels appended to a "
       "buffer, then an indirect compute dispatch over exactly that many items.");
+  section.paragraphs.push_back(ScatterParagraph(pass.workSet));
   section.paragraphs.push_back(pass.difference.Identical()
                                    ? "The strategies' outputs and layers are bit-identical."
                                    : "The strategies' outputs DIFFER: " + pass.difference.Describe() + ". A bug.");

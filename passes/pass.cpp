@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "sim/formats.h"
+
 namespace passes {
 
 std::string_view StrategyName(Strategy strategy) {
@@ -31,6 +33,22 @@ FrameInputs FrameInputsOf(const sim::FramePipeline& frame) {
 PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture) {
   const std::span<const float> texels = texture.Texels();
   return {std::move(name), {"Y"}, texture.Width(), texture.Height(), {texels.begin(), texels.end()}};
+}
+
+sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear) {
+  sim::Texture2D<glm::vec4> target(std::move(name), linear.Width(), linear.Height(), sim::Format::RGBA8Srgb);
+  std::span<glm::vec4> out = target.Texels();
+  std::span<const glm::vec4> in = linear.Texels();
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = sim::Quantize(sim::Format::RGBA8Srgb, in[i]);
+  return target;
+}
+
+sim::Texture2D<glm::vec4> DecodedSrgb8(std::string name, const sim::Texture2D<glm::vec4>& target) {
+  sim::Texture2D<glm::vec4> linear(std::move(name), target.Width(), target.Height(), 4);
+  std::span<glm::vec4> out = linear.Texels();
+  std::span<const glm::vec4> in = target.Texels();
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = sim::Decode(sim::Format::RGBA8Srgb, in[i]);
+  return linear;
 }
 
 }  // namespace passes

@@ -63,6 +63,33 @@ struct PassLayer {
 
 // A one-channel layer ("Y") holding the texture's values.
 PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture);
+// A layer of a vector texture, one named channel per component (an 8-bit texture's texels read
+// as k / 255, as its UNORM view does).
+template <glm::length_t N>
+PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& texture,
+                  std::vector<std::string> channels) {
+  PassLayer layer{std::move(name), std::move(channels), texture.Width(), texture.Height(), {}};
+  layer.values.reserve(texture.Texels().size() * N);
+  for (const glm::vec<N, float>& texel : texture.Texels()) {
+    for (glm::length_t c = 0; c < N; ++c) layer.values.push_back(texel[c]);
+  }
+  return layer;
+}
+
+// The frame's colour as passes with an 8-bit colour target read it: stored into an RGBA8 sRGB
+// texture (the renderer's store, host side, not a pass dispatch), so its views read the codes
+// (UNORM, gamma values) or decode them (sRGB, linear) as the reference shaders do (aa-facts §1.9).
+sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear);
+// What an RGBA8 sRGB target holds, decoded to linear floats for metrics and image output.
+sim::Texture2D<glm::vec4> DecodedSrgb8(std::string name, const sim::Texture2D<glm::vec4>& target);
+
+// How the work set lies on the screen (seed 000's argument for queues: scattered edges leave a
+// stencil-culled shader's quads and waves mostly idle): its pixels, and the 2x2 quads and 8x8
+// tiles (hi-stencil tiles, compute groups) holding at least one of them.
+struct WorkSetShape {
+  std::uint64_t pixels = 0, quads = 0, tiles = 0;
+  friend bool operator==(const WorkSetShape&, const WorkSetShape&) = default;
+};
 
 struct PassOutput {
   sim::Texture2D<glm::vec4> colour{"pass output", 1, 1};
@@ -70,6 +97,12 @@ struct PassOutput {
   // Pixels the strategies' work set held (edge pixels for the demo): under the queue strategy the
   // consume dispatch's active lanes, under the stencil strategy its stencil-passing pixels.
   std::uint64_t workItems = 0;
+  WorkSetShape workSet;  // workSet.pixels == workItems
+
+  void SetWorkSet(const WorkSetShape& shape) {
+    workSet = shape;
+    workItems = shape.pixels;
+  }
 };
 
 struct PassInfo {

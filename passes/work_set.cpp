@@ -2,6 +2,10 @@
 
 #include "passes/work_set.h"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 namespace passes {
 namespace {
 
@@ -39,6 +43,42 @@ std::uint64_t WorkSet::StencilPixels() const {
     for (int x = 0; x < width_; ++x) marked += stencil_->Surface().Stencil(x, y) == 1;
   }
   return marked;
+}
+
+WorkSetShape WorkSet::Shape(Strategy strategy) const {
+  std::vector<std::uint8_t> marked(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0);
+  const auto mark = [&](int x, int y) { marked[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] = 1; };
+  if (strategy == Strategy::StencilCulled) {
+    for (int y = 0; y < height_; ++y) {
+      for (int x = 0; x < width_; ++x) {
+        if (stencil_->Surface().Stencil(x, y) == 1) mark(x, y);
+      }
+    }
+  } else {
+    const std::span<const std::uint32_t> items = queue_->Storage().Elements().first(queue_->Count());
+    for (const std::uint32_t item : items) {
+      const glm::ivec2 pixel = sim::UnpackPixelItem(item);
+      mark(pixel.x, pixel.y);
+    }
+  }
+  return ShapeOf(marked, width_, height_);
+}
+
+WorkSetShape ShapeOf(std::span<const std::uint8_t> marked, int width, int height) {
+  const auto count = [&](int side) {
+    const int columns = (width + side - 1) / side, rows = (height + side - 1) / side;
+    std::vector<std::uint8_t> touched(static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows), 0);
+    std::uint64_t pixels = 0;
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        if (!marked[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]) continue;
+        ++pixels;
+        touched[static_cast<std::size_t>(y / side) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(x / side)] = 1;
+      }
+    }
+    return std::pair{pixels, static_cast<std::uint64_t>(std::count(touched.begin(), touched.end(), 1))};
+  };
+  return {.pixels = count(1).first, .quads = count(2).second, .tiles = count(kWorkSetTileSide).second};
 }
 
 void WorkSet::WriteQueueArguments(sim::Machine& machine) {

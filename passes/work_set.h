@@ -20,12 +20,14 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
 #include <utility>
 
 #include "passes/pass.h"
+#include "sim/check.h"
 #include "sim/dispatch.h"
 
 namespace passes {
@@ -51,6 +53,13 @@ enum class DetectForm : std::uint8_t { Pixel, Compute };
 using PixelForm = std::integral_constant<DetectForm, DetectForm::Pixel>;
 using ComputeForm = std::integral_constant<DetectForm, DetectForm::Compute>;
 
+// 8x8: a hi-stencil tile and a compute group (one 64-lane wave), the MiniEngine FXAA and CMAA2
+// group shape (aa-facts §3, §4).
+inline constexpr int kWorkSetTileSide = 8;
+
+// The shape of a work set given as one byte per pixel (non-zero = in the set).
+WorkSetShape ShapeOf(std::span<const std::uint8_t> marked, int width, int height);
+
 // The work set's machine resources, kept across frames so a sequence does not reallocate them:
 // the stencil target and the pixel queue with its indirect arguments, named after the pass.
 class WorkSet {
@@ -59,18 +68,18 @@ class WorkSet {
 
   // make_detect(sim::Dispatch&, PixelForm or ComputeForm) -> detect kernel (or a StagedDetect in
   // the compute form);
-  // make_consume(sim::Dispatch&) -> consume kernel. Returns the work set's size.
+  // make_consume(sim::Dispatch&) -> consume kernel. Returns the work set's shape.
   template <typename MakeDetect, typename MakeConsume>
-  std::uint64_t Run(sim::Machine& machine, Strategy strategy, const WorkSetKernels& kernels, int width,
+  WorkSetShape Run(sim::Machine& machine, Strategy strategy, const WorkSetKernels& kernels, int width,
                     int height, MakeDetect&& makeDetect, MakeConsume&& makeConsume);
 
  private:
-  // 8x8 groups: one 64-lane wave per group, the MiniEngine FXAA and CMAA2 group shape (aa-facts
-  // §3, §4).
-  static constexpr int kGroupSide = 8;
+  static constexpr int kGroupSide = kWorkSetTileSide;
 
   void Prepare(Strategy strategy, int width, int height);
   std::uint64_t StencilPixels() const;
+  // Read back on the host after the consume dispatch, for the report (not a machine operation).
+  WorkSetShape Shape(Strategy strategy) const;
   void WriteQueueArguments(sim::Machine& machine);
   std::string Name(std::string_view suffix) const { return pass_ + "/" + std::string(suffix); }
 
@@ -89,11 +98,15 @@ class WorkSet {
 };
 
 template <typename MakeDetect, typename MakeConsume>
-std::uint64_t WorkSet::Run(sim::Machine& machine, Strategy strategy, const WorkSetKernels& kernels, int width,
-                           int height, MakeDetect&& makeDetect, MakeConsume&& makeConsume) {
+WorkSetShape WorkSet::Run(sim::Machine& machine, Strategy strategy, const WorkSetKernels& kernels, int width,
+                          int height, MakeDetect&& makeDetect, MakeConsume&& makeConsume) {
   Prepare(strategy, width, height);
-  return strategy == Strategy::StencilCulled ? RunStencilCulled(machine, kernels, makeDetect, makeConsume)
-                                             : RunDeferredQueue(machine, kernels, makeDetect, makeConsume);
+  const std::uint64_t pixels = strategy == Strategy::StencilCulled
+                                   ? RunStencilCulled(machine, kernels, makeDetect, makeConsume)
+                                   : RunDeferredQueue(machine, kernels, makeDetect, makeConsume);
+  const WorkSetShape shape = Shape(strategy);
+  AASIM_CHECK_EQ(shape.pixels, pixels);
+  return shape;
 }
 
 template <typename MakeDetect, typename MakeConsume>

@@ -192,6 +192,7 @@ class StudyRunner {
       result.runs.push_back(std::move(run));
     }
     result.workItems = first->workItems;
+    result.workSet = first->workSet;
     result.image.colour = std::move(first->colour);
     result.image.quality =
         Step(observer_, "metrics " + name, [&] { return ScoreAgainstGroundTruth(result.image.colour, study_.groundTruth); });

@@ -62,6 +62,7 @@ struct StudyPass {
   std::string inputFrame;  // label of the frame it post-processed
   ScoredImage image;       // the first strategy's output; the others are bit-identical or flagged
   std::uint64_t workItems = 0;
+  passes::WorkSetShape workSet{};
   std::vector<StudyPassRun> runs{};
   // The first difference of a later strategy's output from the first's (passes/compare.h).
   passes::StrategyDifference difference{};

@@ -26,14 +26,14 @@ class CopyPass final : public Pass {
   const PassInfo& Info() const override { return copy::Info(); }
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
-    PassOutput output{.colour = {"copy/output", frame.Width(), frame.Height(), 4}, .layers = {}, .workItems = 0};
+    PassOutput output{.colour = {"copy/output", frame.Width(), frame.Height(), 4}, .layers = {}, .workItems = 0, .workSet = {}};
     auto makeMark = [](sim::Dispatch&, auto) { return [](const auto&, int, int) { return true; }; };
     auto makeCopy = [&](sim::Dispatch& d) {
       const sim::TextureView<glm::vec4> in = d.Read(*frame.colour);
       const sim::RwTextureView<glm::vec4> out = d.ReadWrite(output.colour);
       return [=](const auto& lane, int x, int y) { out.Store(lane, x, y, in.Load(lane, x, y)); };
     };
-    output.workItems = workSet_.Run(machine, strategy, kKernels, frame.Width(), frame.Height(), makeMark, makeCopy);
+    output.SetWorkSet(workSet_.Run(machine, strategy, kKernels, frame.Width(), frame.Height(), makeMark, makeCopy));
     return output;
   }
 

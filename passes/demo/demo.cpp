@@ -51,7 +51,7 @@ class DemoPass final : public Pass {
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
     const int width = frame.Width(), height = frame.Height();
-    PassOutput output{.colour = {"demo/output", width, height, 4}, .layers = {}, .workItems = 0};
+    PassOutput output{.colour = {"demo/output", width, height, 4}, .layers = {}, .workItems = 0, .workSet = {}};
     sim::Texture2D<float> edges("demo/edges", width, height, 1);
     const sim::Texture2D<glm::vec4>& colour = *frame.colour;
     auto clampX = [=](int x) { return std::clamp(x, 0, width - 1); };
@@ -103,7 +103,7 @@ class DemoPass final : public Pass {
         out.Store(lane, x, y, sum / 9.0f);
       };
     };
-    output.workItems = workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeBlend);
+    output.SetWorkSet(workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeBlend));
     output.layers.push_back(LayerOf("edges", edges));
     return output;
   }
