@@ -3,6 +3,7 @@
 #include "cli/passes_command.h"
 
 #include <cstdio>
+#include <sstream>
 
 #include "passes/registry.h"
 
@@ -71,6 +72,12 @@ void RunPassesCommand(const PassesCommandOptions& options, std::ostream& out) {
     if (i > 0) out << '\n';
     PrintPass(passes::PassByName(names[i]).info(), out);
   }
+}
+
+std::string DescribeAllPasses() {
+  std::ostringstream text;
+  RunPassesCommand({}, text);
+  return text.str();
 }
 
 }  // namespace cli
