@@ -39,6 +39,7 @@ void AddPassOptions(CLI::App& command, PostCommandOptions& options) {
                   "One setting of the pass, KEY=VALUE with a decimal VALUE inside the range listed below; "
                   "repeat for more")
       ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 

@@ -384,6 +384,7 @@ std::vector<BadInput> BadInputs() {
       {"SettingWithoutValue", Options({"--set", "threshold"}), "--set threshold", "is not key=value", 2},
       {"SettingTwice", Options({"--set", "threshold=0.2", "--set", "threshold=0.3"}), "--set threshold=0.3",
        "threshold is given twice", 2},
+      {"SetTakesOneValue", Options({"--set", "threshold=0.2", "threshold=0.3"}), "threshold=0.3", "not expected", 2},
       {"UnknownStrategy", Options({"--strategy", "foo"}), "--strategy", "foo not in", 2},
       {"UnknownGpu", Options({"--gpu", "nosuch"}), "nosuch", "built-in GPUs", 1},
   };
