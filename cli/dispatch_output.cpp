@@ -18,6 +18,7 @@
 
 #include "cli/counters_json.h"
 #include "cli/image_io.h"
+#include "cli/text_io.h"
 
 namespace cli {
 namespace {
@@ -515,6 +516,25 @@ std::string HeatMapStem(std::size_t index, std::string_view name, std::string_vi
     if (!keep) c = '-';
   }
   return stem;
+}
+
+void PrintHostTime(std::ostream& out, std::span<const study::DispatchRecord> records, int threads) {
+  double hostMs = 0.0;
+  for (const study::DispatchRecord& record : records) hostMs += record.report.hostMilliseconds;
+  out << "\nhost time  " << std::llround(hostMs) << " ms simulating the dispatches (" << threads
+      << " threads; wall time of this program, not a GPU time)\n";
+}
+
+void WriteDispatchReports(OutputDir& dir, std::span<const study::DispatchRecord> records, const sim::GpuConfig& gpu,
+                          const nlohmann::ordered_json& configuration) {
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const sim::DispatchReport& report = records[i].report;
+    if (report.heat.Empty()) continue;
+    const std::string stem = "heat/" + HeatMapStem(i, report.name, records[i].strategy);
+    WriteHeatMap(report.heat, dir.Stage(stem + ".exr"), dir.Stage(stem + ".png"));
+  }
+  WriteJson(dir.Stage("dispatches.json"), DispatchReportsJson(records, gpu, configuration));
+  WriteText(dir.Stage("dispatches.csv"), DispatchReportsCsv(records));
 }
 
 }  // namespace cli

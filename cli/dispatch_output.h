@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/output_dir.h"
 #include "sim/dispatch.h"
 #include "study/dispatch_log.h"
 
@@ -61,6 +62,9 @@ void PrintDispatchComparison(std::ostream& out, std::string_view name, std::stri
                              std::string_view rightLabel,
                              std::span<const study::DispatchRecord> rightPass);
 
+// Wall time of simulating every dispatch on this machine, as the summary's last lines state it.
+void PrintHostTime(std::ostream& out, std::span<const study::DispatchRecord> records, int threads);
+
 // The utilization preview: 4x4 pixels per 8x8 tile, dark blue (0) to yellow (1), dark grey where
 // no lane was launched. Throws std::invalid_argument for an empty map.
 struct HeatMapImage {
@@ -78,5 +82,11 @@ void WriteHeatMap(const sim::TileHeatMap& heat, const std::filesystem::path& exr
 // "<index>-<name>[-<strategy>]" with every character outside [A-Za-z0-9._-] replaced by '-':
 // a file name per dispatch, unique through the index into dispatches.json ("0-frame-material").
 std::string HeatMapStem(std::size_t index, std::string_view name, std::string_view strategy);
+
+// The dispatch reports of a run as `aasim frame` writes them, staged in `dir`: a heat map per
+// dispatch that has one (heat/STEM.exr and .png), dispatches.json with `configuration`, and
+// dispatches.csv. Throws OutputError naming the file.
+void WriteDispatchReports(OutputDir& dir, std::span<const study::DispatchRecord> records, const sim::GpuConfig& gpu,
+                          const nlohmann::ordered_json& configuration);
 
 }  // namespace cli

@@ -3,13 +3,8 @@
 
 #include "cli/frame_command.h"
 
-#include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <optional>
-#include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <oneapi/tbb/global_control.h>
@@ -22,8 +17,7 @@
 #include "study/frame_scene.h"
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
-#include "cli/text_io.h"
-#include "passes/compare.h"
+#include "cli/pass_runs.h"
 #include "passes/registry.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
@@ -32,12 +26,6 @@
 
 namespace cli {
 namespace {
-
-struct PassRun {
-  passes::Strategy strategy;
-  passes::PassOutput output;
-  std::size_t firstDispatch = 0, endDispatch = 0;  // [first, end) in the machine's reports
-};
 
 sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::SamplePattern pattern,
                                 const scenes::Lighting& lighting) {
@@ -86,30 +74,6 @@ void WriteImages(OutputDir& dir, const sim::FramePipeline& pipeline,
   }
 }
 
-void WriteReports(OutputDir& dir, const FrameCommandOptions& options, const sim::GpuConfig& gpu,
-                  std::span<const study::DispatchRecord> records, int threads) {
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const sim::DispatchReport& report = records[i].report;
-    if (report.heat.Empty()) continue;
-    const std::string stem = "heat/" + HeatMapStem(i, report.name, records[i].strategy);
-    WriteHeatMap(report.heat, dir.Stage(stem + ".exr"), dir.Stage(stem + ".png"));
-  }
-  WriteJson(dir.Stage("dispatches.json"), DispatchReportsJson(records, gpu, ConfigurationJson(options, threads)));
-  WriteText(dir.Stage("dispatches.csv"), DispatchReportsCsv(records));
-}
-
-// The study's question side by side: what the studied dispatch costs under each strategy.
-void PrintComparison(std::ostream& out, std::span<const study::DispatchRecord> reports, std::string_view studied,
-                     const PassRun& first, const PassRun& second, const passes::StrategyDifference& difference) {
-  auto dispatches = [&](const PassRun& run) { return reports.subspan(run.firstDispatch, run.endDispatch - run.firstDispatch); };
-  out << "\n" << passes::StrategyName(first.strategy) << " vs " << passes::StrategyName(second.strategy) << ": "
-      << studied << " (" << first.output.workItems << " work-set pixels)\n";
-  PrintDispatchComparison(out, std::string(studied), passes::StrategyName(first.strategy), dispatches(first),
-                          passes::StrategyName(second.strategy), dispatches(second));
-  out << "identical output: "
-      << (difference.Identical() ? "yes (output and layers bit-identical)" : "NO, " + difference.Describe()) << '\n';
-}
-
 }  // namespace
 
 void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) {
@@ -130,44 +94,22 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
   pipeline.Render(scene.Geometry());
   std::vector<study::DispatchRecord> records;
   study::TakeDispatches(machine, records, "");
-  std::vector<PassRun> passRuns;
-  for (const passes::Strategy strategy : options.Strategies()) {
-    // One instance per strategy, as the study makes them.
-    const std::unique_ptr<passes::Pass> pass = options.pass->Make();
-    const std::string strategyName(passes::StrategyName(strategy));
-    PassRun run{.strategy = strategy, .output = {}, .firstDispatch = records.size()};
-    run.output = pass->Run(machine, passes::FrameInputsOf(pipeline), strategy);
-    study::TakeDispatches(machine, records, "", std::string(options.pass->Info().name), strategyName);
-    run.endDispatch = records.size();
-    passRuns.push_back(std::move(run));
-  }
-  passes::StrategyDifference difference;
-  for (std::size_t i = 1; i < passRuns.size() && difference.Identical(); ++i) {
-    difference = passes::CompareOutputs(passRuns.front().output, passRuns[i].output);
-  }
+  const PassRuns passRuns = options.pass ? RunUnderStrategies(machine, *options.pass, passes::FrameInputsOf(pipeline),
+                                                               options.Strategies(), records)
+                                        : PassRuns{};
 
-  WriteImages(dir, pipeline, passRuns);
-  WriteReports(dir, options, machine.Gpu(), records, threads);
+  WriteImages(dir, pipeline, passRuns.runs);
+  WriteDispatchReports(dir, records, machine.Gpu(), ConfigurationJson(options, threads));
   dir.Commit("dispatches.json");
 
   summary << "frame      " << options.scene << ", " << options.width << "x" << options.height
           << ", " << fmask::EqaaName(options.Eqaa()) << ", pattern " << options.pattern
           << ", policy " << options.policy << ", GPU " << machine.Gpu().name << "\n\n";
   PrintDispatchSummary(summary, records, machine.Gpu());
-  if (passRuns.size() == 2) {
-    PrintComparison(summary, records, options.pass->Info().studiedDispatches.front(), passRuns[0], passRuns[1],
-                    difference);
-  }
-  double hostMs = 0.0;
-  for (const study::DispatchRecord& record : records) hostMs += record.report.hostMilliseconds;
-  summary << "\nhost time  " << std::llround(hostMs) << " ms simulating the dispatches (" << threads
-          << " threads; wall time of this program, not a GPU time)\n"
-          << "report: " << (dir.Path() / "dispatches.json").string() << '\n';
-  if (!difference.Identical()) {
-    throw std::runtime_error("--strategy both: the strategies' outputs differ (" + difference.Describe() +
-                             "): a bug in " + std::string(options.pass->Info().source) + " (outputs kept in " +
-                             dir.Path().string() + ")");
-  }
+  if (passRuns.runs.size() == 2) PrintStrategyComparison(summary, records, options.pass->Info(), passRuns);
+  PrintHostTime(summary, records, threads);
+  summary << "report: " << (dir.Path() / "dispatches.json").string() << '\n';
+  if (options.pass) ThrowIfStrategiesDiffer(passRuns, options.pass->Info(), dir.Path());
 }
 
 }  // namespace cli

@@ -25,15 +25,6 @@ constexpr NamedWaveFlush kWaveFlushes[] = {
 };
 
 constexpr std::string_view kPostNone = "none";
-constexpr std::string_view kBothStrategies = "both";
-
-std::vector<std::string> StrategyChoices() {
-  std::vector<std::string> choices{std::string(kBothStrategies)};
-  for (const passes::Strategy strategy : passes::kAllStrategies) {
-    choices.emplace_back(passes::StrategyName(strategy));
-  }
-  return choices;
-}
 
 void AddSurfaceOptions(CLI::App& command, FrameCommandOptions& options) {
   command.add_option("--samples", options.samples, "Coverage samples per pixel S")
@@ -95,7 +86,23 @@ void CheckMemory(const FrameCommandOptions& options) {
 
 }  // namespace
 
-void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush) {
+std::vector<std::string> StrategyChoices() {
+  std::vector<std::string> choices{std::string(kBothStrategies)};
+  for (const passes::Strategy strategy : passes::kAllStrategies) {
+    choices.emplace_back(passes::StrategyName(strategy));
+  }
+  return choices;
+}
+
+std::vector<passes::Strategy> ChosenStrategies(const passes::PassInfo& info, std::string_view choice) {
+  std::vector<passes::Strategy> chosen;
+  for (const passes::Strategy each : info.strategies) {
+    if (choice == kBothStrategies || choice == passes::StrategyName(each)) chosen.push_back(each);
+  }
+  return chosen;
+}
+
+void AddGpuOption(CLI::App& command, std::string& gpu) {
   gpu = std::string(sim::kDefaultGpuName);
   command
       .add_option("--gpu", gpu,
@@ -103,6 +110,10 @@ void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush) 
                       JoinNames(sim::BuiltinGpuNames()) + ") or a configuration file")
       ->type_name("NAME|PATH")
       ->capture_default_str();
+}
+
+void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush) {
+  AddGpuOption(command, gpu);
   command
       .add_option("--flush", flush,
                   "When the pixel-wave packer closes a wave: mix = when 16 quads are in or the "
@@ -113,11 +124,7 @@ void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush) 
 
 std::vector<passes::Strategy> FrameCommandOptions::Strategies() const {
   if (!pass) return {};
-  std::vector<passes::Strategy> chosen;
-  for (const passes::Strategy each : pass->Info().strategies) {
-    if (strategy == kBothStrategies || strategy == passes::StrategyName(each)) chosen.push_back(each);
-  }
-  return chosen;
+  return ChosenStrategies(pass->Info(), strategy);
 }
 
 CLI::App* AddFrameCommand(CLI::App& app, FrameCommandOptions& options) {

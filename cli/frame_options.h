@@ -56,8 +56,16 @@ std::uint64_t EstimateFrameBytes(int width, int height, const fmask::EqaaConfig&
 
 sim::WaveFlush WaveFlushByName(std::string_view name);
 
-// --gpu NAME|PATH (default sim::kDefaultGpuName) and --flush mix|primitive (default: what
-// `flush` holds), shared by every command that runs the machine.
+// --gpu NAME|PATH (default sim::kDefaultGpuName), for every command that runs the machine.
+void AddGpuOption(CLI::App& command, std::string& gpu);
+// --gpu and --flush mix|primitive (default: what `flush` holds), for every command that renders
+// a frame on the machine.
 void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush);
+
+// --strategy's values: "both", then every strategy's name.
+inline constexpr std::string_view kBothStrategies = "both";
+std::vector<std::string> StrategyChoices();
+// The strategies of `info` that --strategy `choice` selects, in the pass's order.
+std::vector<passes::Strategy> ChosenStrategies(const passes::PassInfo& info, std::string_view choice);
 
 }  // namespace cli

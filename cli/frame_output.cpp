@@ -2,12 +2,10 @@
 
 #include "cli/frame_output.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <glm/vec2.hpp>
 
 #include "cli/image_io.h"
+#include "sim/formats.h"
 
 namespace cli {
 namespace {
@@ -33,6 +31,16 @@ std::vector<std::uint8_t> SrgbImage(std::span<const glm::vec4> texels) {
   return pixels;
 }
 
+std::vector<std::uint8_t> SrgbAlphaImage(std::span<const glm::vec4> texels) {
+  std::vector<std::uint8_t> pixels;
+  pixels.reserve(texels.size() * 4);
+  for (const glm::vec4& texel : texels) {
+    pixels.insert(pixels.end(), {EncodeSrgb8(texel.r), EncodeSrgb8(texel.g), EncodeSrgb8(texel.b),
+                                 sim::FloatToUnorm8(texel.a)});
+  }
+  return pixels;
+}
+
 std::vector<std::uint8_t> MaskImage(std::span<const float> mask) {
   std::vector<std::uint8_t> pixels;
   pixels.reserve(mask.size());
@@ -42,16 +50,28 @@ std::vector<std::uint8_t> MaskImage(std::span<const float> mask) {
 
 void WriteLayerPng(const std::filesystem::path& path, const passes::PassLayer& layer) {
   const std::size_t channels = layer.channels.size();
-  const int pngChannels = channels == 1 ? 1 : 3;
+  const int pngChannels = channels == 2 ? 3 : static_cast<int>(channels);
   std::vector<std::uint8_t> pixels;
   pixels.reserve(layer.values.size() / channels * static_cast<std::size_t>(pngChannels));
-  auto byte = [](float value) { return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); };
   for (std::size_t at = 0; at < layer.values.size(); at += channels) {
     for (int c = 0; c < pngChannels; ++c) {
-      pixels.push_back(static_cast<std::size_t>(c) < channels ? byte(layer.values[at + static_cast<std::size_t>(c)]) : 0);
+      pixels.push_back(static_cast<std::size_t>(c) < channels ? sim::FloatToUnorm8(layer.values[at + static_cast<std::size_t>(c)])
+                                                            : 0);
     }
   }
   WritePng(path, layer.width, layer.height, pngChannels, pixels);
+}
+
+void WriteLayerExr(const std::filesystem::path& path, const passes::PassLayer& layer) {
+  const std::size_t channels = layer.channels.size();
+  std::vector<std::vector<float>> planes(channels);
+  for (std::size_t c = 0; c < channels; ++c) {
+    planes[c].reserve(layer.values.size() / channels);
+    for (std::size_t at = c; at < layer.values.size(); at += channels) planes[c].push_back(layer.values[at]);
+  }
+  std::vector<ExrChannel> exrChannels;
+  for (std::size_t c = 0; c < channels; ++c) exrChannels.push_back({layer.channels[c], planes[c]});
+  WriteExr(path, layer.width, layer.height, exrChannels);
 }
 
 void WriteFrameExr(const std::filesystem::path& path, const sim::FramePipeline& pipeline) {

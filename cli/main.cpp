@@ -14,6 +14,8 @@
 #include "cli/frame_options.h"
 #include "cli/output_dir.h"
 #include "cli/passes_command.h"
+#include "cli/post_command.h"
+#include "cli/post_options.h"
 #include "cli/raster_command.h"
 #include "cli/raster_options.h"
 #include "cli/run_command.h"
@@ -73,6 +75,8 @@ int RunAasim(int argc, char** argv) {
   CLI::App* run = cli::AddRunCommand(app, runOptions);
   cli::PassesCommandOptions passesOptions;
   CLI::App* passes = cli::AddPassesCommand(app, passesOptions);
+  cli::PostCommandOptions postOptions;
+  CLI::App* post = cli::AddPostCommand(app, postOptions);
   cli::RequireDecimalIntegers(app);
   app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
              "default scene, report in out/report/report.html.");
@@ -82,8 +86,9 @@ int RunAasim(int argc, char** argv) {
     if (raster->parsed()) cli::ResolveRasterOptions(rasterOptions);
     if (frame->parsed()) cli::ResolveFrameOptions(frameOptions);
     if (passes->parsed()) cli::ResolvePassesOptions(passesOptions);
+    if (post->parsed()) cli::ResolvePostOptions(postOptions);
     // `aasim` alone is the main job with its defaults.
-    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed()) {
+    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed() && !post->parsed()) {
       cli::ResolveRunOptions(*run, runOptions);
     }
   } catch (const CLI::Success& help) {
@@ -94,6 +99,7 @@ int RunAasim(int argc, char** argv) {
                           : frame->parsed()    ? "aasim frame"
                           : run->parsed()      ? "aasim run"
                           : passes->parsed()   ? "aasim passes"
+                          : post->parsed()     ? "aasim post"
                                                : "aasim";
     return ReportUsageError(command, error);
   }
@@ -107,6 +113,8 @@ int RunAasim(int argc, char** argv) {
       cli::RunFixturesCommand(fixturesOptions, std::cout);
     } else if (passes->parsed()) {
       cli::RunPassesCommand(passesOptions, std::cout);
+    } else if (post->parsed()) {
+      cli::RunPostCommand(postOptions, std::cout);
     } else {
       NamingTheScene(runOptions.scene, [&] { cli::RunRunCommand(runOptions, std::cout, std::cerr); });
     }

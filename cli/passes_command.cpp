@@ -3,6 +3,7 @@
 #include "cli/passes_command.h"
 
 #include <cstdio>
+#include <sstream>
 
 #include "passes/registry.h"
 
@@ -50,7 +51,8 @@ CLI::App* AddPassesCommand(CLI::App& app, PassesCommandOptions& options) {
   CLI::App* command = app.add_subcommand(
       "passes",
       "List the registered post passes with their strategies, studied dispatches, inputs, settings and presets: "
-      "what `--post NAME[:key=value,...]` of `aasim run` and `aasim frame` accepts");
+      "what `--post NAME[:key=value,...]` of `aasim run` and `aasim frame` and `--pass`, `--preset` and `--set` of "
+      "`aasim post` accept");
   command->add_option("names", options.names, "Passes to describe [default: all]")->type_name("NAME");
   return command;
 }
@@ -71,6 +73,12 @@ void RunPassesCommand(const PassesCommandOptions& options, std::ostream& out) {
     if (i > 0) out << '\n';
     PrintPass(passes::PassByName(names[i]).info(), out);
   }
+}
+
+std::string DescribeAllPasses() {
+  std::ostringstream text;
+  RunPassesCommand({}, text);
+  return text.str();
 }
 
 }  // namespace cli

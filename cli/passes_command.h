@@ -19,5 +19,7 @@ CLI::App* AddPassesCommand(CLI::App& app, PassesCommandOptions& options);
 // Throws CLI::ValidationError for an unknown name.
 void ResolvePassesOptions(const PassesCommandOptions& options);
 void RunPassesCommand(const PassesCommandOptions& options, std::ostream& out);
+// What `aasim passes` prints for every registered pass, for other commands' --help.
+std::string DescribeAllPasses();
 
 }  // namespace cli
