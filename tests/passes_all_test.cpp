@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "study/frame_scene.h"
 #include "passes/compare.h"
 #include "passes/registry.h"
+#include "passes/work_set.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
 #include "sim_test_util.h"
@@ -102,6 +105,21 @@ TEST_P(EveryPass, OneAndTwoThreadsGiveIdenticalImagesAndCounters) {
   }
 }
 
+TEST_P(EveryPass, TheWorkSetShapeIsTheSameUnderEveryStrategy) {
+  std::optional<WorkSetShape> first;
+  for (const Strategy strategy : Info().strategies) {
+    const WorkSetShape shape = RunPass(Pass(), strategy, 2).output.workSet;
+    EXPECT_LE(shape.quads, shape.pixels);
+    EXPECT_LE(shape.pixels, 4 * shape.quads);
+    EXPECT_LE(shape.tiles, shape.quads);
+    EXPECT_LE(shape.quads, 16 * shape.tiles);
+    if (first) {
+      EXPECT_EQ(shape, *first) << StrategyName(strategy);
+    }
+    first = shape;
+  }
+}
+
 TEST_P(EveryPass, TheStudiedDispatchRunsOneActiveLanePerWorkItem) {
   for (const Strategy strategy : Info().strategies) {
     const PassRun run = RunPass(Pass(), strategy, 2);
@@ -116,7 +134,30 @@ TEST_P(EveryPass, TheStudiedDispatchRunsOneActiveLanePerWorkItem) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, EveryPass, ::testing::ValuesIn(PassNames()),
-                         [](const ::testing::TestParamInfo<std::string>& param) { return param.param; });
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                           // Test names are identifiers: "smaa-colour" runs as Registry/EveryPass.X/smaa_colour.
+                           std::string name = param.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace passes
+
+namespace passes {
+namespace {
+
+TEST(WorkSetShape, CountsThePixelsAndTheQuadsAndTilesTheyTouch) {
+  const int width = 20, height = 11;  // partial quads and tiles at the right and bottom
+  std::vector<std::uint8_t> marked(static_cast<std::size_t>(width * height), 0);
+  const auto mark = [&](int x, int y) { marked[static_cast<std::size_t>(y * width + x)] = 1; };
+  mark(0, 0);
+  mark(1, 1);    // same quad, same tile
+  mark(2, 0);    // next quad, same tile
+  mark(19, 10);  // the last partial quad and tile
+  mark(8, 0);    // second tile column
+  EXPECT_EQ(ShapeOf(marked, width, height), (WorkSetShape{.pixels = 5, .quads = 4, .tiles = 3}));
+}
 
 }  // namespace
 }  // namespace passes
