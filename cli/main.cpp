@@ -18,6 +18,7 @@
 #include "cli/raster_options.h"
 #include "cli/run_command.h"
 #include "cli/run_options.h"
+#include "cli/smaa_tables_command.h"
 #include "raster/raster_error.h"
 
 namespace {
@@ -73,6 +74,8 @@ int RunAasim(int argc, char** argv) {
   CLI::App* run = cli::AddRunCommand(app, runOptions);
   cli::PassesCommandOptions passesOptions;
   CLI::App* passes = cli::AddPassesCommand(app, passesOptions);
+  cli::SmaaTablesCommandOptions smaaTablesOptions;
+  CLI::App* smaaTables = cli::AddSmaaTablesCommand(app, smaaTablesOptions);
   cli::RequireDecimalIntegers(app);
   app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
              "default scene, report in out/report/report.html.");
@@ -83,18 +86,20 @@ int RunAasim(int argc, char** argv) {
     if (frame->parsed()) cli::ResolveFrameOptions(frameOptions);
     if (passes->parsed()) cli::ResolvePassesOptions(passesOptions);
     // `aasim` alone is the main job with its defaults.
-    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed()) {
+    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed() &&
+        !smaaTables->parsed()) {
       cli::ResolveRunOptions(*run, runOptions);
     }
   } catch (const CLI::Success& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
-    const char* command = raster->parsed()     ? "aasim raster"
-                          : fixtures->parsed() ? "aasim fixtures"
-                          : frame->parsed()    ? "aasim frame"
-                          : run->parsed()      ? "aasim run"
-                          : passes->parsed()   ? "aasim passes"
-                                               : "aasim";
+    const char* command = raster->parsed()       ? "aasim raster"
+                          : fixtures->parsed()   ? "aasim fixtures"
+                          : frame->parsed()      ? "aasim frame"
+                          : run->parsed()        ? "aasim run"
+                          : passes->parsed()     ? "aasim passes"
+                          : smaaTables->parsed() ? "aasim smaa-tables"
+                                                 : "aasim";
     return ReportUsageError(command, error);
   }
 
@@ -107,6 +112,8 @@ int RunAasim(int argc, char** argv) {
       cli::RunFixturesCommand(fixturesOptions, std::cout);
     } else if (passes->parsed()) {
       cli::RunPassesCommand(passesOptions, std::cout);
+    } else if (smaaTables->parsed()) {
+      cli::RunSmaaTablesCommand(smaaTablesOptions, std::cout);
     } else {
       NamingTheScene(runOptions.scene, [&] { cli::RunRunCommand(runOptions, std::cout, std::cerr); });
     }
