@@ -168,7 +168,8 @@ constexpr std::array<DiagCandidates, kPatternCount> kDiagLines{{
 int DiagLeftCode(int pattern) { return (pattern & 1) + 2 * (pattern >> 2 & 1); }
 int DiagRightCode(int pattern) { return 2 * (pattern >> 1 & 1) + (pattern >> 3 & 1); }
 
-// Fraction of the sample grid over the unit pixel at `corner` strictly on the left of a -> b.
+// Fraction of the sample grid over the unit pixel at `corner` strictly on the side of a -> b that
+// its normal (b.y - a.y, a.x - b.x) points to.
 // A line of zero length (patterns 4 and 5 at distances (0, 0) without offset) has every sample
 // inside, as in the reference: the published table holds that.
 double SampledCoverage(Point a, Point b, Point corner) {
