@@ -195,12 +195,18 @@ TEST(PassesSmaaTables, EveryAreaTexelIsWrittenOnceAndTheRestIsZero) {
   for (int pattern = 0; pattern < kPatternCount; ++pattern) {
     for (int stripe = 0; stripe < kOrthoOffsetCount; ++stripe) {
       for (int i = 0; i < kOrthoSize; ++i) {
-        for (int j = 0; j < kOrthoSize; ++j) ++writes[OrthoTexel(pattern, stripe, i, j).y][OrthoTexel(pattern, stripe, i, j).x];
+        for (int j = 0; j < kOrthoSize; ++j) {
+          const Texel t = OrthoTexel(pattern, stripe, i, j);
+          ++writes[t.y][t.x];
+        }
       }
     }
     for (int stripe = 0; stripe < kDiagOffsetCount; ++stripe) {
       for (int i = 0; i < kDiagSize; ++i) {
-        for (int j = 0; j < kDiagSize; ++j) ++writes[DiagTexel(pattern, stripe, i, j).y][DiagTexel(pattern, stripe, i, j).x];
+        for (int j = 0; j < kDiagSize; ++j) {
+          const Texel t = DiagTexel(pattern, stripe, i, j);
+          ++writes[t.y][t.x];
+        }
       }
     }
   }
@@ -276,9 +282,17 @@ TEST(PassesSmaaTables, EverySearchTexEntryMatchesItsDefinition) {
 TEST(PassesSmaaTables, SearchTexEqualsThePublishedTable) {
   // FNV-1a 64 of all 1024 published bytes; spot values (x, row) read from the published file.
   EXPECT_EQ(fmask::Fnv1a64(SearchTexBytes()), 0x21c1fcf0aa631065ull);
-  constexpr std::array<std::array<int, 3>, 8> kSpots{
-      {{0, 0, 0xfe}, {3, 0, 0x7f}, {21, 0, 0x7f}, {33, 0, 0xfe}, {0, 2, 0x00}, {0, 7, 0x7f}, {36, 7, 0x00}, {63, 15, 0x00}}};
-  for (const auto& [x, row, value] : kSpots) EXPECT_EQ(SearchTexBytes()[row * kSearchTexWidth + x], value) << x << " " << row;
+  constexpr std::array<std::array<int, 3>, 8> kSpots{{{0, 0, 0xfe},
+                                                       {3, 0, 0x7f},
+                                                       {21, 0, 0x7f},
+                                                       {33, 0, 0xfe},
+                                                       {0, 2, 0x00},
+                                                       {0, 7, 0x7f},
+                                                       {36, 7, 0x00},
+                                                       {63, 15, 0x00}}};
+  for (const auto& [x, row, value] : kSpots) {
+    EXPECT_EQ(SearchTexBytes()[row * kSearchTexWidth + x], value) << x << " " << row;
+  }
 }
 
 TEST(PassesSmaaTables, AreaTexEqualsThePublishedTable) {

@@ -127,8 +127,10 @@ AreaPair UShape(End ends, int leftDistance, int rightDistance, double offset) {
 AreaPair ZShape(End left, End right, int leftDistance, int rightDistance, double offset) {
   const OrthoLine line = MakeLine(left, right, leftDistance + rightDistance + 1, offset);
   const AreaPair whole = PixelArea(line.start, line.end, leftDistance);
-  if (!(std::abs(offset) > 0.0)) return whole;
-  return Half(whole + (PixelArea(line.start, line.middle, leftDistance) + PixelArea(line.middle, line.end, leftDistance)));
+  if (offset == 0.0) return whole;
+  const AreaPair halves =
+      PixelArea(line.start, line.middle, leftDistance) + PixelArea(line.middle, line.end, leftDistance);
+  return Half(whole + halves);
 }
 
 // --- Diagonal lines ---
