@@ -25,6 +25,7 @@
 #include "cli/image_io.h"
 #include "cli/output_dir.h"
 #include "cli/output_error.h"
+#include "cli/text_io.h"
 #include "fmask/fixtures.h"
 #include "raster/json_input.h"
 
@@ -204,14 +205,6 @@ Json FixtureJson(const fmask::FixtureData& data) {
 }
 
 // --- Files ---
-
-void WriteBytes(const fs::path& path, std::span<const std::uint8_t> bytes) {
-  std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-  file.close();
-  if (!file) throw OutputError(path.string() + ": cannot write");
-}
 
 std::optional<Bytes> ReadBytes(const fs::path& path) {
   // Only regular files: a FIFO put in a fixture's place would block the verifier forever.

@@ -20,6 +20,7 @@
 #include "cli/raster_options.h"
 #include "cli/run_command.h"
 #include "cli/run_options.h"
+#include "cli/smaa_tables_command.h"
 #include "raster/raster_error.h"
 
 namespace {
@@ -77,6 +78,8 @@ int RunAasim(int argc, char** argv) {
   CLI::App* passes = cli::AddPassesCommand(app, passesOptions);
   cli::PostCommandOptions postOptions;
   CLI::App* post = cli::AddPostCommand(app, postOptions);
+  cli::SmaaTablesCommandOptions smaaTablesOptions;
+  CLI::App* smaaTables = cli::AddSmaaTablesCommand(app, smaaTablesOptions);
   cli::RequireDecimalIntegers(app);
   app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
              "default scene, report in out/report/report.html.");
@@ -88,19 +91,21 @@ int RunAasim(int argc, char** argv) {
     if (passes->parsed()) cli::ResolvePassesOptions(passesOptions);
     if (post->parsed()) cli::ResolvePostOptions(postOptions);
     // `aasim` alone is the main job with its defaults.
-    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed() && !post->parsed()) {
+    if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed() && !post->parsed() &&
+        !smaaTables->parsed()) {
       cli::ResolveRunOptions(*run, runOptions);
     }
   } catch (const CLI::Success& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
-    const char* command = raster->parsed()     ? "aasim raster"
-                          : fixtures->parsed() ? "aasim fixtures"
-                          : frame->parsed()    ? "aasim frame"
-                          : run->parsed()      ? "aasim run"
-                          : passes->parsed()   ? "aasim passes"
-                          : post->parsed()     ? "aasim post"
-                                               : "aasim";
+    const char* command = raster->parsed()       ? "aasim raster"
+                          : fixtures->parsed()   ? "aasim fixtures"
+                          : frame->parsed()      ? "aasim frame"
+                          : run->parsed()        ? "aasim run"
+                          : passes->parsed()     ? "aasim passes"
+                          : post->parsed()       ? "aasim post"
+                          : smaaTables->parsed() ? "aasim smaa-tables"
+                                                 : "aasim";
     return ReportUsageError(command, error);
   }
 
@@ -115,6 +120,8 @@ int RunAasim(int argc, char** argv) {
       cli::RunPassesCommand(passesOptions, std::cout);
     } else if (post->parsed()) {
       cli::RunPostCommand(postOptions, std::cout);
+    } else if (smaaTables->parsed()) {
+      cli::RunSmaaTablesCommand(smaaTablesOptions, std::cout);
     } else {
       NamingTheScene(runOptions.scene, [&] { cli::RunRunCommand(runOptions, std::cout, std::cerr); });
     }

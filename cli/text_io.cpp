@@ -23,4 +23,11 @@ void WriteText(const std::filesystem::path& path, const std::string& text) {
   if (!file) throw OutputError(path.string() + ": cannot write text");
 }
 
+void WriteBytes(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  std::ofstream file(path, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  file.close();
+  if (!file) throw OutputError(path.string() + ": cannot write");
+}
+
 }  // namespace cli

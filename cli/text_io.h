@@ -1,8 +1,10 @@
 #pragma once
-// Text outputs of the command line (JSON documents, CSV, traces), written so that a failed write
-// is an error rather than a silently truncated file.
+// Text outputs of the command line (JSON documents, CSV, traces) and raw byte files, written so
+// that a failed write is an error rather than a silently truncated file.
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -13,5 +15,7 @@ namespace cli {
 void WriteJson(const std::filesystem::path& path, const nlohmann::ordered_json& json);
 // Exactly `text`. Throws OutputError naming the path.
 void WriteText(const std::filesystem::path& path, const std::string& text);
+// Exactly `bytes`. Throws OutputError naming the path.
+void WriteBytes(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 
 }  // namespace cli
