@@ -121,25 +121,40 @@ bool ViewCompatible(Format resource, Format view) {
   return resource == view || (rgba8(resource) && rgba8(view));
 }
 
-// D3D11 §3.2.3.6: NaN -> 0, clamp to [0, 1], scale by 2^8 - 1, add 0.5 and drop the fraction.
-// In double the product (24 x 8 significant bits) and the sum are exact, so this is the ideal
-// conversion; the spec allows 0.6 ULP, we take none.
-std::uint8_t FloatToUnorm8(float value) {
-  if (std::isnan(value)) return 0;
-  const double c = std::clamp(static_cast<double>(value), 0.0, 1.0);
-  return static_cast<std::uint8_t>(std::floor(c * 255.0 + 0.5));
-}
-
-// D3D11 §3.2.3.5: the code over 2^8 - 1, one correctly rounded float division.
-float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) / 255.0f; }
-
 // D3D11 §3.2.3.8: NaN -> 0, clamp, encode (linear below 0.0031308, else 1.055 c^(1/2.4) - 0.055)
-// in double, then the UNORM quantisation above.
-std::uint8_t FloatToSrgb8(float linear) {
+// in double, then the UNORM quantisation.
+std::uint8_t FloatToSrgb8ByCurve(float linear) {
   if (std::isnan(linear)) return 0;
   const double c = std::clamp(static_cast<double>(linear), 0.0, 1.0);
   const double encoded = SrgbEncodeCurve(c);
   return static_cast<std::uint8_t>(std::floor(encoded * 255.0 + 0.5));
+}
+
+namespace {
+// thresholds[k - 1] = the smallest float in [0, 1] the curve encodes to k or more (the curve is
+// monotonic, so a bisection over float bit patterns finds it; non-negative floats order as
+// their bits do).
+const std::array<float, 255>& SrgbEncodeThresholds() {
+  static const std::array<float, 255> thresholds = [] {
+    std::array<float, 255> t{};
+    for (int k = 1; k <= 255; ++k) {
+      std::uint32_t low = 0, high = std::bit_cast<std::uint32_t>(1.0f);  // code(low) < k <= code(high)
+      while (high - low > 1) {
+        const std::uint32_t mid = low + (high - low) / 2;
+        (FloatToSrgb8ByCurve(std::bit_cast<float>(mid)) >= k ? high : low) = mid;
+      }
+      t[static_cast<std::size_t>(k - 1)] = std::bit_cast<float>(high);
+    }
+    return t;
+  }();
+  return thresholds;
+}
+}  // namespace
+
+std::uint8_t FloatToSrgb8(float linear) {
+  if (std::isnan(linear)) return 0;
+  const std::array<float, 255>& t = SrgbEncodeThresholds();
+  return static_cast<std::uint8_t>(std::upper_bound(t.begin(), t.end(), linear) - t.begin());
 }
 
 float Srgb8ToFloat(std::uint8_t code) { return SrgbDecodeTable()[code]; }

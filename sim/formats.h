@@ -7,6 +7,8 @@
 // read through a UNORM view in one dispatch and an sRGB view in another (D3D's typeless
 // resources, aa-facts §1.9: SMAA reads the same colour both ways).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string_view>
 #include <type_traits>
@@ -40,10 +42,24 @@ bool IsUnorm8(Format format);
 // family: RGBA8Unorm and RGBA8Srgb share their bytes).
 bool ViewCompatible(Format resource, Format view);
 
-// Scalar conversions (D3D11 §3.2.3.5-§3.2.3.8 and §3.2.2).
-std::uint8_t FloatToUnorm8(float value);
-float Unorm8ToFloat(std::uint8_t code);
+// Scalar conversions (D3D11 §3.2.3.5-§3.2.3.8 and §3.2.2). The 8-bit UNORM pair is inline:
+// every 8-bit fetch and store of every kernel goes through it.
+
+// D3D11 §3.2.3.6: NaN -> 0, clamp to [0, 1], scale by 2^8 - 1, add 0.5 and drop the fraction.
+// In double the product (24 x 8 significant bits) and the sum are exact, so this is the ideal
+// conversion; the spec allows 0.6 ULP, we take none.
+inline std::uint8_t FloatToUnorm8(float value) {
+  if (std::isnan(value)) return 0;
+  const double c = std::clamp(static_cast<double>(value), 0.0, 1.0);
+  return static_cast<std::uint8_t>(std::floor(c * 255.0 + 0.5));
+}
+// D3D11 §3.2.3.5: the code over 2^8 - 1, one correctly rounded float division.
+inline float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) / 255.0f; }
+// D3D11 §3.2.3.8, exact: the encoded value the double-precision curve gives, found in a table of
+// the 255 decision thresholds (the curve evaluated per store would dominate a full-screen pass).
 std::uint8_t FloatToSrgb8(float linear);
+// The same conversion evaluating the curve in double, the definition the table is built from.
+std::uint8_t FloatToSrgb8ByCurve(float linear);
 float Srgb8ToFloat(std::uint8_t code);
 std::uint16_t FloatToHalf(float value);
 float HalfToFloat(std::uint16_t bits);

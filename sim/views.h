@@ -170,6 +170,9 @@ class TextureView {
     const int xa = Address(x0, Width(), mode), x1 = Address(x0 + 1, Width(), mode);
     const int ya = Address(y0, Height(), mode), y1 = Address(y0 + 1, Height(), mode);
     const T t00 = Texel(xa, ya), t10 = Texel(x1, ya), t01 = Texel(xa, y1), t11 = Texel(x1, y1);
+    // At a texel centre both weights are 0 and every lerp returns its first code: the stored
+    // texel (8-bit texels are kept as code / 255). The footprint is still fetched and counted.
+    if (cx.weight == 0 && cy.weight == 0) return t00;
     T result{};
     for (int c = 0; c < kTexelComponents<T>; ++c) {
       const auto code = [c](const T& texel) { return static_cast<int>(FloatToUnorm8(TexelComponent(texel, c))); };

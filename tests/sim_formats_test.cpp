@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -258,6 +260,38 @@ TEST(SimFormats, ViewStoresQuantiseOnlyFormattedTextures) {
   EXPECT_NE(half.At(2, 0).x, 0.3f);
   EXPECT_EQ(plain.At(2, 0), 0.123456f);
   EXPECT_EQ(plain.ModelledBytes(), 4u * 2);
+}
+
+}  // namespace
+}  // namespace sim
+
+namespace sim {
+namespace {
+
+// The threshold table gives what the curve gives, on a stride through every float in [0, 1]
+// and on every float within 512 ulps of each threshold.
+TEST(SimFormats, TheSrgbEncodeTableAgreesWithTheCurve) {
+  const std::uint32_t one = std::bit_cast<std::uint32_t>(1.0f);
+  for (std::uint32_t bits = 0; bits <= one; bits += 997) {
+    const float value = std::bit_cast<float>(bits);
+    ASSERT_EQ(FloatToSrgb8(value), FloatToSrgb8ByCurve(value)) << value;
+  }
+  // Where a coarse walk sees the code change, check every float around the change.
+  std::uint8_t previous = 0;
+  for (std::uint32_t coarse = 0; coarse <= one; coarse += 1u << 12) {
+    const std::uint8_t code = FloatToSrgb8ByCurve(std::bit_cast<float>(coarse));
+    if (code != previous) {
+      for (std::uint32_t bits = coarse > 8192 ? coarse - 8192 : 0; bits <= std::min(one, coarse + 512); ++bits) {
+        const float value = std::bit_cast<float>(bits);
+        ASSERT_EQ(FloatToSrgb8(value), FloatToSrgb8ByCurve(value)) << value;
+      }
+    }
+    previous = code;
+  }
+  for (const float outside : {-1.0f, -0.0f, 1.0f, 1.5f, std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+    EXPECT_EQ(FloatToSrgb8(outside), FloatToSrgb8ByCurve(outside)) << outside;
+  }
 }
 
 }  // namespace
