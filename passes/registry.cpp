@@ -4,6 +4,7 @@
 
 #include "passes/copy/copy.h"
 #include "passes/demo/demo.h"
+#include "passes/smaa/smaa.h"
 
 namespace passes {
 
@@ -11,6 +12,10 @@ std::span<const RegisteredPass> AllPasses() {
   static const RegisteredPass kPasses[] = {
       {demo::Info, demo::Make},
       {copy::Info, copy::Make},
+      {smaa::Info<smaa::Variant::Luma>, smaa::Make<smaa::Variant::Luma>},
+      {smaa::Info<smaa::Variant::Colour>, smaa::Make<smaa::Variant::Colour>},
+      {smaa::Info<smaa::Variant::Depth>, smaa::Make<smaa::Variant::Depth>},
+      {smaa::Info<smaa::Variant::LumaPredicated>, smaa::Make<smaa::Variant::LumaPredicated>},
   };
   return kPasses;
 }

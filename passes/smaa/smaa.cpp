@@ -1,0 +1,219 @@
+// SMAA 1x on the pass framework (see smaa.h).
+
+#include "passes/smaa/smaa.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "passes/smaa/area_tex.h"
+#include "passes/smaa/blending_weights.h"
+#include "passes/smaa/search_tex.h"
+#include "passes/smaa/smaa_kernels.h"
+#include "passes/smaa/smaa_targets.h"
+#include "passes/work_set.h"
+#include "sim/formats.h"
+
+namespace passes::smaa {
+namespace {
+
+constexpr std::string_view kEdgeDispatch = "smaa/edge-detection";
+constexpr std::string_view kWeightDispatch = "smaa/blending-weights";
+constexpr std::string_view kBlendDispatch = "smaa/neighbourhood-blending";
+
+// Estimates for the timing model. The reference publishes no instruction counts; these are hand
+// counts of SMAA.hlsl's shaders as GCN VALU instructions (a dot3 is 3, a fetch's address 1-2).
+constexpr WorkSetKernels kKernels{
+    .detectDispatch = kEdgeDispatch,
+    .consumeDispatch = kWeightDispatch,
+    .detectPixel = {.vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 48,
+                    .source = "hand count of SMAALumaEdgeDetectionPS: 7 point fetches' addresses (7), 7 luma dot "
+                              "products (21), 6 abs differences (6), 2 steps, the discard test, the max tree and "
+                              "the local-contrast step (~14)"},
+    .detectCompute = {.vgprs = 16, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 56,
+                      .source = "the pixel form's 48 plus the thread-to-pixel mapping, bounds test and the append's "
+                                "mbcnt and address (~8)"},
+    .consume = {.vgprs = 32, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 220,
+                .source = "hand count of SMAABlendingWeightCalculationPS on a typical edge pixel (HIGH): two "
+                          "diagonal searches of 2-3 steps (~60), one orthogonal search pair of ~4 steps each at "
+                          "~8 per step (~70), search-length and area addressing (~30), corner rounding (~25), "
+                          "branches and weight stores (~35); longer lines cost ~8 per extra step"},
+};
+constexpr sim::KernelInfo kBlendKernel{
+    .vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 36,
+    .source = "hand count of SMAANeighborhoodBlendingPS: 3 weight fetches' addresses (4), the sum and branch (5), "
+              "the axis choice and offsets (10), the normalise (4), 2 fetches and the weighted sum (13)"};
+
+Config ConfigOf(Variant variant, const PassSettings& settings) {
+  Config config;
+  config.edges = variant == Variant::Colour ? EdgeMode::Colour
+                 : variant == Variant::Depth ? EdgeMode::Depth
+                                             : EdgeMode::Luma;
+  config.predication = variant == Variant::LumaPredicated;
+  const auto get = [&](std::string_view key) { return static_cast<float>(settings.Get(key)); };
+  config.threshold = get("threshold");
+  config.maxSearchSteps = static_cast<int>(settings.Get("max_search_steps"));
+  config.maxSearchStepsDiag = static_cast<int>(settings.Get("max_search_steps_diag"));
+  config.cornerRounding = get("corner_rounding");
+  if (variant != Variant::Depth) config.localContrastFactor = get("local_contrast_adaptation_factor");
+  if (config.predication) {
+    config.predicationThreshold = get("predication_threshold");
+    config.predicationScale = get("predication_scale");
+    config.predicationStrength = get("predication_strength");
+  }
+  return config;
+}
+
+class SmaaPass final : public Pass {
+ public:
+  SmaaPass(const PassInfo& info, const Config& config)
+      : info_(info), config_(config), tables_(LookupTables::Make()), workSet_(info.name) {}
+
+  const PassInfo& Info() const override { return info_; }
+
+  PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
+    const int width = frame.Width(), height = frame.Height();
+    const Metrics metrics = Metrics::Of(width, height);
+    const sim::Texture2D<glm::vec4> colour = Srgb8ColourTarget("smaa/colour", *frame.colour);
+    Intermediates targets(width, height);
+
+    auto makeDetect = [&](sim::Dispatch& d, auto) {
+      std::optional<sim::TextureView<glm::vec4>> gamma;
+      if (config_.edges != EdgeMode::Depth) gamma = d.Read(colour).As(sim::Format::RGBA8Unorm);
+      std::optional<sim::TextureView<float>> depth;
+      if (config_.edges == EdgeMode::Depth || config_.predication) depth = d.Read(*frame.depth);
+      const EdgeDetection detect(config_, metrics, gamma, depth);
+      const sim::RwTextureView<glm::vec2> edges = d.ReadWrite(targets.edges);
+      return [=](const sim::LaneBase& lane, int x, int y) {
+        const glm::vec2 e = detect(lane, x, y);
+        if (e.x + e.y == 0.0f) return false;  // the reference's discard: nothing written
+        edges.Store(lane, x, y, e);
+        return true;
+      };
+    };
+    auto makeWeights = [&](sim::Dispatch& d) {
+      const BlendingWeights weights(config_, metrics,
+                                    {.edges = d.Read(targets.edges), .area = d.Read(tables_.area),
+                                     .search = d.Read(tables_.search), .searchSteps = d.Counter("search_steps")});
+      const sim::RwTextureView<glm::vec4> out = d.ReadWrite(targets.weights);
+      return [=](const sim::LaneBase& lane, int x, int y) { out.Store(lane, x, y, weights(lane, x, y)); };
+    };
+    PassOutput output;
+    output.SetWorkSet(workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeWeights));
+
+    sim::Texture2D<glm::vec4> blended("smaa/output", width, height, sim::Format::RGBA8Srgb);
+    {
+      sim::Dispatch d(std::string(kBlendDispatch), kBlendKernel);
+      const NeighbourhoodBlending blend(metrics, d.Read(colour), d.Read(targets.weights));
+      const sim::RwTextureView<glm::vec4> out = d.ReadWrite(blended);
+      machine.FullScreen(d, {.width = width, .height = height},
+                         [&](sim::PixelLane& lane) { out.Store(lane, lane.x, lane.y, blend(lane, lane.x, lane.y)); });
+    }
+    output.colour = DecodedSrgb8("smaa/output", blended);
+    output.layers.push_back(LayerOf("edges", targets.edges, {"R", "G"}));
+    output.layers.push_back(LayerOf("weights", targets.weights, {"R", "G", "B", "A"}));
+    return output;
+  }
+
+ private:
+  const PassInfo& info_;
+  Config config_;
+  LookupTables tables_;
+  WorkSet workSet_;
+};
+
+std::vector<SettingInfo> SettingsOf(Variant variant) {
+  // Defaults and ranges: SMAA.hlsl's configuration macros (aa-facts §1.2).
+  std::vector<SettingInfo> settings{
+      {.name = "threshold", .defaultValue = 0.1, .min = 0.0, .max = 0.5, .minExclusive = true,
+       .doc = variant == Variant::Depth ? "SMAA_THRESHOLD; depth edges use 0.1 x this (SMAA_DEPTH_THRESHOLD)"
+                                        : "SMAA_THRESHOLD: edge contrast in gamma space"},
+      {.name = "max_search_steps", .defaultValue = 16, .min = 0, .max = 98, .integer = true,
+       .doc = "SMAA_MAX_SEARCH_STEPS: orthogonal search steps per side, 2 px each"},
+      {.name = "max_search_steps_diag", .defaultValue = 8, .min = 0, .max = 20, .integer = true,
+       .doc = "SMAA_MAX_SEARCH_STEPS_DIAG: diagonal search steps per side, 1 px each; 0 disables diagonals"},
+      {.name = "corner_rounding", .defaultValue = 25, .min = 0, .max = 100,
+       .doc = "SMAA_CORNER_ROUNDING in percent; 100 disables corner detection"},
+  };
+  if (variant != Variant::Depth) {
+    settings.push_back({.name = "local_contrast_adaptation_factor", .defaultValue = 2.0, .min = 1.0, .max = 16.0,
+                        .doc = "SMAA_LOCAL_CONTRAST_ADAPTATION_FACTOR: an edge survives if no neighbour delta "
+                               "exceeds it times the edge's own"});
+  }
+  if (variant == Variant::LumaPredicated) {
+    settings.push_back({.name = "predication_threshold", .defaultValue = 0.01, .min = 0.0, .max = 1.0,
+                        .doc = "SMAA_PREDICATION_THRESHOLD: depth difference that marks a predication edge"});
+    settings.push_back({.name = "predication_scale", .defaultValue = 2.0, .min = 1.0, .max = 5.0,
+                        .doc = "SMAA_PREDICATION_SCALE: the threshold's scale away from depth edges"});
+    settings.push_back({.name = "predication_strength", .defaultValue = 0.4, .min = 0.0, .max = 1.0,
+                        .doc = "SMAA_PREDICATION_STRENGTH: how much a depth edge lowers the scaled threshold"});
+  }
+  return settings;
+}
+
+// SMAA_PRESET_LOW .. _ULTRA (aa-facts §1.2): LOW and MEDIUM disable diagonals and corners.
+std::vector<Preset> Presets() {
+  return {
+      {"low", {{"threshold", 0.15}, {"max_search_steps", 4}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
+      {"medium",
+       {{"threshold", 0.1}, {"max_search_steps", 8}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
+      {"high", {{"threshold", 0.1}, {"max_search_steps", 16}, {"max_search_steps_diag", 8}, {"corner_rounding", 25}}},
+      {"ultra",
+       {{"threshold", 0.05}, {"max_search_steps", 32}, {"max_search_steps_diag", 16}, {"corner_rounding", 25}}},
+  };
+}
+
+struct VariantNames {
+  std::string_view name, description;
+};
+constexpr VariantNames NamesOf(Variant variant) {
+  switch (variant) {
+    case Variant::Luma: return {"smaa", "SMAA 1x: luma edges, orthogonal and diagonal searches, neighbourhood blend"};
+    case Variant::Colour: return {"smaa-colour", "SMAA 1x with colour edges (max RGB difference)"};
+    case Variant::Depth: return {"smaa-depth", "SMAA 1x with depth edges (no local contrast adaptation)"};
+    case Variant::LumaPredicated:
+      return {"smaa-predicated", "SMAA 1x: luma edges with thresholds predicated by the frame's depth"};
+  }
+  return {};
+}
+
+PassInfo MakeInfo(Variant variant) {
+  std::vector<FrameInput> inputs{FrameInput::Colour};
+  if (variant == Variant::Depth || variant == Variant::LumaPredicated) inputs.push_back(FrameInput::Depth);
+  return {
+      .name = NamesOf(variant).name,
+      .description = NamesOf(variant).description,
+      .source = "passes/smaa/smaa.h",
+      .settings = SettingsOf(variant),
+      .presets = Presets(),
+      .inputs = inputs,
+      .studiedDispatches = {kWeightDispatch},
+      .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
+      .bytesPerPixel = kBytesPerPixel,
+      .temporal = false,
+  };
+}
+
+}  // namespace
+
+template <Variant V>
+const PassInfo& Info() {
+  static const PassInfo info = MakeInfo(V);
+  return info;
+}
+
+template <Variant V>
+std::unique_ptr<Pass> Make(const PassSettings& settings) {
+  return std::make_unique<SmaaPass>(Info<V>(), ConfigOf(V, settings));
+}
+
+template const PassInfo& Info<Variant::Luma>();
+template const PassInfo& Info<Variant::Colour>();
+template const PassInfo& Info<Variant::Depth>();
+template const PassInfo& Info<Variant::LumaPredicated>();
+template std::unique_ptr<Pass> Make<Variant::Luma>(const PassSettings&);
+template std::unique_ptr<Pass> Make<Variant::Colour>(const PassSettings&);
+template std::unique_ptr<Pass> Make<Variant::Depth>(const PassSettings&);
+template std::unique_ptr<Pass> Make<Variant::LumaPredicated>(const PassSettings&);
+
+}  // namespace passes::smaa

@@ -1,0 +1,39 @@
+#pragma once
+// SMAA 1x, the reference implementation's three passes (iryoku/smaa SMAA.hlsl; aa-facts §1),
+// with its work set (the edge pixels) under both dispatch strategies:
+//
+//   frame colour ──store──► colour RGBA8_SRGB (W x H; the frame's 8-bit sRGB target)
+//   [frame depth R32F] ─────────────────────────────────────┐ (depth edges, or predication)
+//                                                           ▼
+//   smaa/edge-detection      colour through a UNORM view (gamma values), point samples; depth
+//     (detect)               gathers. Writes edges RG8 (R = edge on the left side of the pixel,
+//                            G = on its top side; cleared to 0, nothing written where no edge)
+//                            stencil:  full-screen PS, stencil = 1 on edge pixels
+//                            queue:    compute 8x8, appends edge pixels
+//   smaa/queue-args          (queue only) append count -> indirect arguments
+//   smaa/blending-weights    edges RG8 (fixed-point bilinear), AreaTex RG8 160x560, SearchTex
+//     (consume)              R8 64x16 -> weights RGBA8 (cleared to 0; aa-facts §1.5 channels)
+//                            stencil:  full-screen PS, stencil == 1, hi-stencil
+//                            queue:    indirect compute, one edge pixel per thread
+//   smaa/neighbourhood-      colour through an sRGB view (linear, float bilinear), weights ->
+//     blending               output RGBA8_SRGB; full-screen PS on every pixel, both strategies
+//
+// Registered variants (one registry line each): smaa (luma edges), smaa-colour, smaa-depth and
+// smaa-predicated (luma edges, thresholds predicated by the frame's depth). Presets low, medium,
+// high, ultra are SMAA.hlsl's (aa-facts §1.2); the defaults are HIGH's. Layers: "edges" (R, G)
+// and "weights" (R, G, B, A), the 8-bit texels as k / 255.
+
+#include <memory>
+
+#include "passes/pass.h"
+
+namespace passes::smaa {
+
+enum class Variant { Luma, Colour, Depth, LumaPredicated };
+
+template <Variant V>
+const PassInfo& Info();
+template <Variant V>
+std::unique_ptr<Pass> Make(const PassSettings& settings);
+
+}  // namespace passes::smaa
