@@ -278,6 +278,9 @@ class Machine {
   GpuConfig gpu_;
   raster::Rasterizer rasterizer_;
   std::optional<raster::DepthStencilSurface> fullScreenSurface_;  // reused when no stencil is bound
+  // Without a stencil a full-screen triangle rasterizes to the same quads every time: the first
+  // result at this size is kept (a 1080p triangle is half a million quads).
+  std::optional<raster::RasterResult> fullScreenRaster_;
   std::vector<std::vector<std::array<fmask::Colour, raster::kQuadPixels>>> shaded_;  // per bin, per quad
   std::vector<DispatchReport> reports_;
 };

@@ -291,14 +291,19 @@ const raster::RasterResult& Machine::RasterizeFullScreen(const FullScreenCall& c
       config.width = call.width;
       config.height = call.height;
       fullScreenSurface_.emplace(config, raster::MakeBuiltinPattern("centre", 1));
+      fullScreenRaster_.reset();
     }
+    if (fullScreenRaster_) return *fullScreenRaster_;
     surface = &*fullScreenSurface_;
   }
   // One triangle covering the viewport: clip (-1,-1), (3,-1), (-1,3).
   static constexpr std::array<glm::vec4, 3> kTriangle = {glm::vec4(-1, -1, 0, 1), glm::vec4(3, -1, 0, 1),
                                                          glm::vec4(-1, 3, 0, 1)};
   static constexpr std::array<std::uint32_t, 3> kIndices = {0, 1, 2};
-  return rasterizer_.Run({kTriangle, kIndices, 0}, state, *surface);
+  const raster::RasterResult& result = rasterizer_.Run({kTriangle, kIndices, 0}, state, *surface);
+  if (call.stencil != nullptr) return result;
+  fullScreenRaster_ = result;
+  return *fullScreenRaster_;
 }
 
 void Machine::CommitSlots(Dispatch& dispatch, const detail::ChunkState& chunk, DispatchReport& report) {
