@@ -70,8 +70,10 @@ void StageGroundTruth(OutputDir& dir, const StudyGroundTruth& truth) {
   WritePng(dir.Stage(kImages + "ground-truth/edges.png"), image.width, image.height, 1, MaskImage(truth.edgeMask));
 }
 
+// The 8-bit codes as PNG (what the pass's render target held) and the values as EXR.
 void StageLayer(OutputDir& dir, const std::string& folder, const passes::PassLayer& layer) {
   WriteLayerPng(dir.Stage(folder + layer.name + ".png"), layer);
+  WriteLayerExr(dir.Stage(folder + layer.name + ".exr"), layer);
 }
 
 nlohmann::ordered_json PassNamesJson(std::span<const passes::PassConfig> passes) {
