@@ -344,3 +344,23 @@ INSTANTIATE_TEST_SUITE_P(CliRun, CliRunBadInputTest, ::testing::ValuesIn(BadInpu
                          [](const auto& param) { return param.param.name; });
 
 }  // namespace
+
+namespace {
+
+// The main job's SMAA and `aasim post` on the frame the main job post-processed: the same image,
+// edges and weights (issue: "the same image through aasim post and through the main job").
+TEST_F(CliRunTest, PostOnTheRunsFrameGivesTheRunsSmaaImages) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  const fs::path posted = *scratch_ / "post-smaa";
+  const CommandResult post = RunAasim({"post", "--pass", "smaa", "--input",
+                                       (Out() / "images/frames/1s-1z-1f/frame.exr").string(), "--threads", "2",
+                                       "--out", posted.string()},
+                                      *scratch_);
+  ASSERT_EQ(post.exitCode, 0) << post.err;
+  EXPECT_EQ(ReadText(posted / "output.png"), ReadText(Out() / "images/passes/smaa/output.png"));
+  for (const char* layer : {"edges.png", "weights.png", "edges.exr", "weights.exr"}) {
+    EXPECT_EQ(ReadText(posted / layer), ReadText(Out() / "images/passes/smaa/stencil" / layer)) << layer;
+  }
+}
+
+}  // namespace
