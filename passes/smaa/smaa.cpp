@@ -6,43 +6,13 @@
 #include <optional>
 #include <string>
 
-#include "passes/smaa/area_tex.h"
-#include "passes/smaa/blending_weights.h"
-#include "passes/smaa/search_tex.h"
-#include "passes/smaa/smaa_kernels.h"
-#include "passes/smaa/smaa_targets.h"
-#include "passes/work_set.h"
+#include "passes/smaa/smaa_pipeline.h"
 #include "sim/formats.h"
 
 namespace passes::smaa {
 namespace {
 
-constexpr std::string_view kEdgeDispatch = "smaa/edge-detection";
-constexpr std::string_view kWeightDispatch = "smaa/blending-weights";
-constexpr std::string_view kBlendDispatch = "smaa/neighbourhood-blending";
-
-// Estimates for the timing model. The reference publishes no instruction counts; these are hand
-// counts of SMAA.hlsl's shaders as GCN VALU instructions (a dot3 is 3, a fetch's address 1-2).
-constexpr WorkSetKernels kKernels{
-    .detectDispatch = kEdgeDispatch,
-    .consumeDispatch = kWeightDispatch,
-    .detectPixel = {.vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 48,
-                    .source = "hand count of SMAALumaEdgeDetectionPS: 7 point fetches' addresses (7), 7 luma dot "
-                              "products (21), 6 abs differences (6), 2 steps, the discard test, the max tree and "
-                              "the local-contrast step (~14)"},
-    .detectCompute = {.vgprs = 16, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 56,
-                      .source = "the pixel form's 48 plus the thread-to-pixel mapping, bounds test and the append's "
-                                "mbcnt and address (~8)"},
-    .consume = {.vgprs = 32, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 220,
-                .source = "hand count of SMAABlendingWeightCalculationPS on a typical edge pixel (HIGH): two "
-                          "diagonal searches of 2-3 steps (~60), one orthogonal search pair of ~4 steps each at "
-                          "~8 per step (~70), search-length and area addressing (~30), corner rounding (~25), "
-                          "branches and weight stores (~35); longer lines cost ~8 per extra step"},
-};
-constexpr sim::KernelInfo kBlendKernel{
-    .vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 36,
-    .source = "hand count of SMAANeighborhoodBlendingPS: 3 weight fetches' addresses (4), the sum and branch (5), "
-              "the axis choice and offsets (10), the normalise (4), 2 fetches and the weighted sum (13)"};
+const DispatchNames kDispatchNames{"smaa/edge-detection", "smaa/blending-weights", "smaa/neighbourhood-blending"};
 
 Config ConfigOf(Variant variant, const PassSettings& settings) {
   Config config;
@@ -66,60 +36,25 @@ Config ConfigOf(Variant variant, const PassSettings& settings) {
 
 class SmaaPass final : public Pass {
  public:
-  SmaaPass(const PassInfo& info, const Config& config)
-      : info_(info), config_(config), tables_(LookupTables::Make()), workSet_(info.name) {}
+  SmaaPass(const PassInfo& info, const Config& config) : info_(info), smaa_(info.name, config, kDispatchNames) {}
 
   const PassInfo& Info() const override { return info_; }
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
-    const int width = frame.Width(), height = frame.Height();
-    const Metrics metrics = Metrics::Of(width, height);
     const sim::Texture2D<glm::vec4> colour = Srgb8ColourTarget("smaa/colour", *frame.colour);
-    Intermediates targets(width, height);
-
-    auto makeDetect = [&](sim::Dispatch& d, auto) {
-      std::optional<sim::TextureView<glm::vec4>> gamma;
-      if (config_.edges != EdgeMode::Depth) gamma = d.Read(colour).As(sim::Format::RGBA8Unorm);
-      std::optional<sim::TextureView<float>> depth;
-      if (config_.edges == EdgeMode::Depth || config_.predication) depth = d.Read(*frame.depth);
-      const EdgeDetection detect(config_, metrics, gamma, depth);
-      const sim::RwTextureView<glm::vec2> edges = d.ReadWrite(targets.edges);
-      return [=](const sim::LaneBase& lane, int x, int y) {
-        const glm::vec2 e = detect(lane, x, y);
-        if (e.x + e.y == 0.0f) return false;  // the reference's discard: nothing written
-        edges.Store(lane, x, y, e);
-        return true;
-      };
-    };
-    auto makeWeights = [&](sim::Dispatch& d) {
-      const BlendingWeights weights(config_, metrics,
-                                    {.edges = d.Read(targets.edges), .area = d.Read(tables_.area),
-                                     .search = d.Read(tables_.search), .searchSteps = d.Counter("search_steps")});
-      const sim::RwTextureView<glm::vec4> out = d.ReadWrite(targets.weights);
-      return [=](const sim::LaneBase& lane, int x, int y) { out.Store(lane, x, y, weights(lane, x, y)); };
-    };
+    sim::Texture2D<glm::vec4> blended("smaa/output", frame.Width(), frame.Height(), sim::Format::RGBA8Srgb);
     PassOutput output;
-    output.SetWorkSet(workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeWeights));
-
-    sim::Texture2D<glm::vec4> blended("smaa/output", width, height, sim::Format::RGBA8Srgb);
-    {
-      sim::Dispatch d(std::string(kBlendDispatch), kBlendKernel);
-      const NeighbourhoodBlending blend(metrics, d.Read(colour), d.Read(targets.weights));
-      const sim::RwTextureView<glm::vec4> out = d.ReadWrite(blended);
-      machine.FullScreen(d, {.width = width, .height = height},
-                         [&](sim::PixelLane& lane) { out.Store(lane, lane.x, lane.y, blend(lane, lane.x, lane.y)); });
-    }
+    const Smaa1x::Frame result = smaa_.Run(machine, strategy, colour, frame.depth, blended, Blend::Replace);
+    output.SetWorkSet(result.workSet);
     output.colour = DecodedSrgb8("smaa/output", blended);
-    output.layers.push_back(LayerOf("edges", targets.edges, {"R", "G"}));
-    output.layers.push_back(LayerOf("weights", targets.weights, {"R", "G", "B", "A"}));
+    output.layers.push_back(LayerOf("edges", result.targets.edges, {"R", "G"}));
+    output.layers.push_back(LayerOf("weights", result.targets.weights, {"R", "G", "B", "A"}));
     return output;
   }
 
  private:
   const PassInfo& info_;
-  Config config_;
-  LookupTables tables_;
-  WorkSet workSet_;
+  Smaa1x smaa_;
 };
 
 std::vector<SettingInfo> SettingsOf(Variant variant) {
@@ -187,7 +122,7 @@ PassInfo MakeInfo(Variant variant) {
       .settings = SettingsOf(variant),
       .presets = Presets(),
       .inputs = inputs,
-      .studiedDispatches = {kWeightDispatch},
+      .studiedDispatches = {kDispatchNames.weights},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       .bytesPerPixel = kBytesPerPixel,
       .temporal = false,
