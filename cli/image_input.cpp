@@ -249,12 +249,12 @@ InputImage ReadColourPng(const fs::path& path, std::span<const std::uint8_t> byt
                                    [](const glm::vec4& texel) { return texel.a != 1.0f; });
     InputImage image{"png", alpha, {"colour", size.width, size.height, 4}};
     std::span<glm::vec4> texels = image.colour.Texels();
-    auto linear = [](float unorm) {
-      return sim::Srgb8ToFloat(static_cast<std::uint8_t>(std::lround(unorm * 255.0f)));
-    };
+    // Colour through an sRGB view, alpha as a UNORM8 channel reads (sim/formats.h).
+    auto code8 = [](float unorm) { return static_cast<std::uint8_t>(std::lround(unorm * 255.0f)); };
     for (std::size_t t = 0; t < texels.size(); ++t) {
       const glm::vec4& code = decoded.texels[t];
-      texels[t] = {linear(code.r), linear(code.g), linear(code.b), code.a};
+      texels[t] = {sim::Srgb8ToFloat(code8(code.r)), sim::Srgb8ToFloat(code8(code.g)), sim::Srgb8ToFloat(code8(code.b)),
+                   sim::Unorm8ToFloat(code8(code.a))};
     }
     return image;
   } catch (const scenes::SceneError& error) {

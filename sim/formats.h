@@ -38,6 +38,8 @@ std::string_view FormatName(Format format);
 // sRGB is not one: it is decoded, then filtered in float, as llvmpipe does (its 8-bit path
 // excludes sRGB: u_format.c util_format_fits_8unorm).
 bool IsUnorm8(Format format);
+// 8 bits per channel, UNORM or sRGB: every texel value is finite.
+inline bool IsEightBitPerChannel(Format format) { return IsUnorm8(format) || format == Format::RGBA8Srgb; }
 // Whether a view of `view` format may read a resource created as `resource` (the typeless
 // family: RGBA8Unorm and RGBA8Srgb share their bytes).
 bool ViewCompatible(Format resource, Format view);
@@ -45,16 +47,18 @@ bool ViewCompatible(Format resource, Format view);
 // Scalar conversions (D3D11 §3.2.3.5-§3.2.3.8 and §3.2.2). The 8-bit UNORM pair is inline:
 // every 8-bit fetch and store of every kernel goes through it.
 
-// D3D11 §3.2.3.6: NaN -> 0, clamp to [0, 1], scale by 2^8 - 1, add 0.5 and drop the fraction.
-// In double the product (24 x 8 significant bits) and the sum are exact, so this is the ideal
-// conversion; the spec allows 0.6 ULP, we take none.
+// D3D11 §3.2.3.6 (NaN -> 0, clamp to [0, 1], scale by 2^8 - 1, round; 0.6 ULP tolerance) as
+// llvmpipe does it, the implementation the reference shaders' outputs come from (aa-facts §1.9):
+// the float32 product 255 x rounded to nearest, ties to even. Measured against Mesa 22.3.6
+// llvmpipe render-target stores of every (k + 0.5) / 255 (docs/smaa.md "Against the reference"):
+// floor(255 x + 0.5) in exact arithmetic differs on 127 of those 255 ties.
 inline std::uint8_t FloatToUnorm8(float value) {
   if (std::isnan(value)) return 0;
-  const double c = std::clamp(static_cast<double>(value), 0.0, 1.0);
-  return static_cast<std::uint8_t>(std::floor(c * 255.0 + 0.5));
+  return static_cast<std::uint8_t>(std::nearbyint(std::clamp(value, 0.0f, 1.0f) * 255.0f));
 }
-// D3D11 §3.2.3.5: the code over 2^8 - 1, one correctly rounded float division.
-inline float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) / 255.0f; }
+// D3D11 §3.2.3.5 (the code over 2^8 - 1) as llvmpipe computes it: k times float32(1 / 255),
+// which differs from the correctly rounded k / 255 by one ulp on 126 codes (measured as above).
+inline float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) * (1.0f / 255.0f); }
 // D3D11 §3.2.3.8, exact: the encoded value the double-precision curve gives, found in a table of
 // the 255 decision thresholds (the curve evaluated per store would dominate a full-screen pass).
 std::uint8_t FloatToSrgb8(float linear);

@@ -72,19 +72,29 @@ TEST(SimFormats, TexelTypesMustHoldEveryChannel) {
   EXPECT_NO_THROW(Texture2D<glm::vec4>("t", 2, 2, Format::R8Unorm));
 }
 
-// D3D11 §3.2.3.6: scale by 255, add 0.5, drop the fraction: every code k / 255 maps back to k,
-// a float just below the midpoint (k + 0.5) / 255 rounds down and one at or above it rounds up
-// (0.5 is the one midpoint a float holds exactly: 127.5 rounds up to 128).
+// llvmpipe's UNORM8 conversions (sim/formats.h): a read is k * float32(1/255); a store rounds the
+// float32 product 255 x to nearest with ties to even. Every code maps back to itself; away from
+// ties a store is the nearest code; at a tie the even code wins (42.5 / 255 stores 42, as
+// llvmpipe was measured to: docs/smaa.md).
 TEST(SimFormats, Unorm8StoresRoundToTheNearestCodeAtEveryCodeAndMidpoint) {
+  const float reciprocal = 1.0f / 255.0f;
   for (int k = 0; k <= 255; ++k) {
     const auto code = static_cast<std::uint8_t>(k);
     EXPECT_EQ(FloatToUnorm8(Unorm8ToFloat(code)), code);
-    EXPECT_EQ(Unorm8ToFloat(code), static_cast<float>(static_cast<double>(k) / 255.0)) << k;
+    EXPECT_EQ(Unorm8ToFloat(code), static_cast<float>(k) * reciprocal) << k;
     if (k == 255) continue;
     const long double midpoint = (k + 0.5L) / 255.0L;
-    EXPECT_EQ(static_cast<int>(FloatToUnorm8(FloatBelow(midpoint))), k);
-    EXPECT_EQ(static_cast<int>(FloatToUnorm8(FloatAtOrAbove(midpoint))), k + 1);
+    // Well below and above the midpoint the nearest code, whatever the rounding of the product.
+    EXPECT_EQ(static_cast<int>(FloatToUnorm8(static_cast<float>(midpoint - 1e-4L))), k);
+    EXPECT_EQ(static_cast<int>(FloatToUnorm8(static_cast<float>(midpoint + 1e-4L))), k + 1);
+    // At the float nearest the midpoint: the product is the tie or a float next to it.
+    const float nearest = static_cast<float>(midpoint);
+    const long double product = static_cast<long double>(static_cast<float>(nearest * 255.0f));
+    const int expected = product < k + 0.5L ? k : product > k + 0.5L ? k + 1 : (k % 2 == 0 ? k : k + 1);
+    EXPECT_EQ(static_cast<int>(FloatToUnorm8(nearest)), expected) << k;
   }
+  EXPECT_EQ(FloatToUnorm8(static_cast<float>(42.5 / 255)), 42);
+  EXPECT_EQ(FloatToUnorm8(static_cast<float>(43.5 / 255)), 44);
   EXPECT_EQ(FloatToUnorm8(0.5f), 128);
   EXPECT_EQ(FloatToUnorm8(kNaN), 0);
   EXPECT_EQ(FloatToUnorm8(-kInf), 0);
@@ -255,7 +265,8 @@ TEST(SimFormats, ViewStoresQuantiseOnlyFormattedTextures) {
     b.Store(lane, lane.threadId.x, 0, value);
     c.Store(lane, lane.threadId.x, 0, value.w);
   });
-  EXPECT_EQ(rgba8.At(2, 0), glm::vec4(Unorm8ToFloat(77), 1.0f, 0.0f, Unorm8ToFloat(31)));
+  // 0.3f * 255 rounds to the float32 tie 76.5, which goes to the even code (llvmpipe's rule).
+  EXPECT_EQ(rgba8.At(2, 0), glm::vec4(Unorm8ToFloat(76), 1.0f, 0.0f, Unorm8ToFloat(31)));
   EXPECT_EQ(half.At(2, 0), glm::vec4(HalfToFloat(FloatToHalf(0.3f)), 2.0f, -1.0f, HalfToFloat(FloatToHalf(0.123456f))));
   EXPECT_NE(half.At(2, 0).x, 0.3f);
   EXPECT_EQ(plain.At(2, 0), 0.123456f);

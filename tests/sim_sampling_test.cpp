@@ -107,7 +107,7 @@ void ExpectFixedPointMatchesReference(Format format, int w, int h, std::uint32_t
       const T sample = view.SampleBilinear(lane, uv, mode, o);
       for (int c = 0; c < kTexelComponents<T>; ++c) {
         const int expected = ReferenceBilinear(codes, c, w, h, uv, o, mode);
-        ASSERT_EQ(TexelComponent(sample, c), static_cast<float>(expected) / 255.0f)
+        ASSERT_EQ(TexelComponent(sample, c), static_cast<float>(expected) * (1.0f / 255.0f))
             << FormatName(format) << " uv " << uv.x << "," << uv.y << " offset " << o.x << "," << o.y << " channel " << c;
       }
     }
