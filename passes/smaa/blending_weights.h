@@ -44,6 +44,15 @@ class BlendingWeights {
     return v_.edges.SampleBilinear(lane, uv, sim::AddressMode::Clamp, offset);
   }
   glm::vec2 Pixel() const { return {metrics_.invWidth, metrics_.invHeight}; }
+  // The vertex shader's loop end offset[2] = mad(pixel, +-2 S, mad(pixel, start, texcoord)), as
+  // llvmpipe evaluates it: its compiler sums the two constant products first, texcoord +
+  // (start * pixel + (+-2 S) * pixel), one rounding fewer than the source order (measured against
+  // the reference: docs/smaa.md "Against the reference"). Whether a search takes one more step at
+  // its limit depends on it.
+  float LoopEnd(float texcoord, float start, float sign, float pixel) const {
+    const float steps = sign * 2.0f * static_cast<float>(config_.maxSearchSteps);
+    return texcoord + (start * pixel + steps * pixel);
+  }
 
   // Orthogonal searches (SMAASearchXLeft/XRight/YUp/YDown).
   float SearchXLeft(const sim::LaneBase& lane, glm::vec2 uv, float end) const;
@@ -143,9 +152,8 @@ inline glm::vec2 BlendingWeights::HorizontalWeights(const sim::LaneBase& lane, g
                                 glm::vec4(uv, uv));
   const glm::vec4 offset1 = Mad(glm::vec4(Pixel(), Pixel()), glm::vec4(-0.125f, -0.25f, -0.125f, 1.25f),
                                 glm::vec4(uv, uv));
-  const float steps = 2.0f * static_cast<float>(config_.maxSearchSteps);
-  const float endLeft = Mad(metrics_.invWidth, -steps, offset0.x);
-  const float endRight = Mad(metrics_.invWidth, steps, offset0.z);
+  const float endLeft = LoopEnd(uv.x, -0.25f, -1.0f, metrics_.invWidth);
+  const float endRight = LoopEnd(uv.x, 1.25f, 1.0f, metrics_.invWidth);
 
   glm::vec2 coords(SearchXLeft(lane, {offset0.x, offset0.y}, endLeft), offset1.y);
   glm::vec2 d(coords.x, 0.0f);
@@ -166,9 +174,8 @@ inline glm::vec2 BlendingWeights::VerticalWeights(const sim::LaneBase& lane, glm
                                 glm::vec4(uv, uv));
   const glm::vec4 offset1 = Mad(glm::vec4(Pixel(), Pixel()), glm::vec4(-0.125f, -0.25f, -0.125f, 1.25f),
                                 glm::vec4(uv, uv));
-  const float steps = 2.0f * static_cast<float>(config_.maxSearchSteps);
-  const float endUp = Mad(metrics_.invHeight, -steps, offset1.y);
-  const float endDown = Mad(metrics_.invHeight, steps, offset1.w);
+  const float endUp = LoopEnd(uv.y, -0.25f, -1.0f, metrics_.invHeight);
+  const float endDown = LoopEnd(uv.y, 1.25f, 1.0f, metrics_.invHeight);
 
   glm::vec2 coords(offset0.x, SearchYUp(lane, {offset1.x, offset1.y}, endUp));
   glm::vec2 d(coords.y, 0.0f);
