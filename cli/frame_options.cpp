@@ -153,6 +153,13 @@ void ResolveFrameOptions(FrameCommandOptions& options) {
       throw CLI::ValidationError("--post " + options.post + ": " + error.what());
     }
   }
+  if (options.pass && options.pass->Info().eqaaSamples != 0 &&
+      options.pass->Info().eqaaSamples != options.Eqaa().coverageSamples) {
+    const std::string samples = std::to_string(options.pass->Info().eqaaSamples);
+    throw CLI::ValidationError("--post " + options.post + ": reads a " + samples +
+                               "-sample EQAA surface; the frame has " +
+                               std::to_string(options.Eqaa().coverageSamples) + " (use --samples " + samples + ")");
+  }
   // The strategy only means something to a post pass, so it is refused rather than ignored.
   if (!options.pass && !options.strategy.empty()) {
     throw CLI::ValidationError("--strategy " + options.strategy + " needs a post pass (--post NAME)");

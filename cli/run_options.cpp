@@ -97,7 +97,10 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
       .add_option("--post", options.post,
                   "Post passes, comma-separated, each NAME[:key=value,...], run under every dispatch "
                   "strategy they have: " +
-                      JoinNames(passes::PassNames()) + ", or all, or none (settings: aasim passes)")
+                      JoinNames(passes::PassNames()) +
+                      ", or all (every pass the --modes feed: a pass reading an S-sample EQAA surface, such as "
+                      "smaa-s2x, runs on the first S-sample mode and is left out of all without one), or none "
+                      "(settings: aasim passes)")
       ->type_name("LIST")
       ->capture_default_str();
   command
@@ -192,6 +195,29 @@ CLI::App* AddRunCommand(CLI::App& app, RunCommandOptions& options) {
   return command;
 }
 
+// A pass reading an EQAA surface of S samples (SMAA S2x) runs on the first mode with S samples.
+// `--post all` leaves out the passes no mode feeds (said in --help); a pass named explicitly is
+// an error.
+void KeepPassesTheModesFeed(RunCommandOptions& options) {
+  std::vector<passes::PassConfig> fed;
+  for (passes::PassConfig& pass : options.postPasses) {
+    const int samples = pass.Info().eqaaSamples;
+    const bool feeds = samples == 0 || std::any_of(options.eqaaModes.begin(), options.eqaaModes.end(),
+                                                   [&](const fmask::EqaaConfig& mode) {
+                                                     return mode.coverageSamples == samples;
+                                                   });
+    if (feeds) {
+      fed.push_back(std::move(pass));
+    } else if (options.post != kAllPasses) {
+      throw CLI::ValidationError("--post " + std::string(pass.Info().name) + ": needs a frame with " +
+                                 std::to_string(samples) + " coverage samples; add a mode to --modes (e.g. " +
+                                 std::to_string(samples) + "S/" + std::to_string(samples) + "Z/" +
+                                 std::to_string(samples) + "F)");
+    }
+  }
+  options.postPasses = std::move(fed);
+}
+
 void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
   if (options.quick) {
     if (command.count("--width") == 0) options.width = kQuickWidth;
@@ -204,6 +230,7 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
   CheckGroundTruthSamples(options.groundTruthSamples);
   options.eqaaModes = ParseEqaaModes(options.modes);
   options.postPasses = ResolvePasses(options.post);
+  KeepPassesTheModesFeed(options);
   options.strategies.clear();
   if (const std::optional<passes::Strategy> one = passes::StrategyByName(options.strategy)) {
     options.strategies = {*one};

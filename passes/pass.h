@@ -119,6 +119,9 @@ struct PassInfo {
   // the memory guard.
   std::uint64_t bytesPerPixel = 0;
   bool temporal = false;  // keeps history across frames
+  // The coverage samples of the EQAA surface the pass reads (S2x: 2); 0 when it reads none. The
+  // study runs such a pass on the first of its frames with that many samples.
+  int eqaaSamples = 0;
 };
 
 class Pass {

@@ -16,6 +16,7 @@ std::span<const RegisteredPass> AllPasses() {
       {smaa::Info<smaa::Variant::Colour>, smaa::Make<smaa::Variant::Colour>},
       {smaa::Info<smaa::Variant::Depth>, smaa::Make<smaa::Variant::Depth>},
       {smaa::Info<smaa::Variant::LumaPredicated>, smaa::Make<smaa::Variant::LumaPredicated>},
+      {smaa::Info<smaa::Variant::S2x>, smaa::Make<smaa::Variant::S2x>},
   };
   return kPasses;
 }

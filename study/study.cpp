@@ -154,9 +154,8 @@ class StudyRunner {
       frame.fetchResolve = std::move(fetch);
     }
     if (observer_.frameDone) observer_.frameDone(frame, pipeline);
-    // Post-process AA works on the aliased frame a renderer without MSAA produces: the first mode.
-    if (mode == 0) {
-      for (const passes::PassConfig& pass : config_.passes) RunPass(pass, pipeline, label);
+    for (const passes::PassConfig& pass : config_.passes) {
+      if (PassFrame(config_, pass.Info()) == mode) RunPass(pass, pipeline, label);
     }
     study_.frames.push_back(std::move(frame));
   }
@@ -218,6 +217,14 @@ class StudyRunner {
 };
 
 }  // namespace
+
+std::optional<std::size_t> PassFrame(const ExperimentConfig& config, const passes::PassInfo& pass) {
+  if (pass.eqaaSamples == 0) return config.modes.empty() ? std::nullopt : std::optional<std::size_t>(0);
+  for (std::size_t mode = 0; mode < config.modes.size(); ++mode) {
+    if (config.modes[mode].coverageSamples == pass.eqaaSamples) return mode;
+  }
+  return std::nullopt;
+}
 
 std::string ModeSlug(const fmask::EqaaConfig& mode) {
   return std::to_string(mode.coverageSamples) + "s-" + std::to_string(mode.depthSamples) + "z-" +

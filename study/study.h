@@ -112,6 +112,11 @@ struct StudyObserver {
 // "8S/4Z/2F" -> "8s-4z-2f", for folder names.
 std::string ModeSlug(const fmask::EqaaConfig& mode);
 
+// The index of the mode whose frame a pass post-processes: the first mode (the aliased frame a
+// renderer without MSAA produces) for passes reading no EQAA surface, else the first mode with
+// the surface's sample count the pass needs; nullopt when the configuration has none.
+std::optional<std::size_t> PassFrame(const ExperimentConfig& config, const passes::PassInfo& pass);
+
 // The caller pins the host thread count (tbb::global_control); images and counters do not
 // depend on it.
 Study RunStudy(const StudyInputs& inputs, const ExperimentConfig& config, const StudyObserver& observer = {});

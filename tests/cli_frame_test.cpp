@@ -277,6 +277,11 @@ TEST_F(CliFrameTest, EveryRegisteredPassRunsFromThePostOption) {
   for (const std::string& name : passes::PassNames()) {
     std::vector<std::string> args = SmallRun(scratch_ / name);
     args.insert(args.end(), {"--post", name});
+    // A pass reading an S-sample EQAA surface gets a frame with S samples.
+    if (const int samples = passes::PassByName(name).info().eqaaSamples; samples != 0) {
+      const std::string s = std::to_string(samples);
+      args.insert(args.end(), {"--samples", s, "--depth-samples", s, "--fragments", s, "--pattern", "standard"});
+    }
     const CommandResult run = RunAasim(args, scratch_);
     ASSERT_EQ(run.exitCode, 0) << name << ": " << run.err;
     EXPECT_NE(run.out.find("identical output: yes"), std::string::npos) << name << ": " << run.out;
@@ -294,6 +299,15 @@ TEST_F(CliFrameTest, EveryRegisteredPassRunsFromThePostOption) {
     return json["dispatches"].back()["counters"]["lanes/active"].get<std::uint64_t>();
   };
   EXPECT_GT(edgeLanes("demo"), edgeLanes("demo:threshold=0.5"));
+}
+
+TEST_F(CliFrameTest, APassReadingASampleCountTheFrameLacksIsRefused) {
+  std::vector<std::string> args = SmallRun(scratch_ / "s2x");
+  args.insert(args.end(), {"--post", "smaa-s2x"});
+  const CommandResult run = RunAasim(args, scratch_);
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("reads a 2-sample EQAA surface"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "s2x"));
 }
 
 TEST_F(CliFrameTest, PassesListsTheRegistryWithSettings) {

@@ -43,6 +43,19 @@ std::vector<std::string> SmallRun(const fs::path& scratch, const fs::path& out, 
           "--progress", "never",  "--out",     out.string()};
 }
 
+// `--post all` with the default modes (1S, 4S, 8S, 16S): every registered pass those frames feed
+// (SMAA S2x needs a 2S frame and is left out).
+std::vector<std::string> PassesTheDefaultModesFeed() {
+  std::vector<std::string> names;
+  for (const passes::RegisteredPass& pass : passes::AllPasses()) {
+    const int samples = pass.info().eqaaSamples;
+    if (samples == 0 || samples == 1 || samples == 4 || samples == 8 || samples == 16) {
+      names.emplace_back(pass.info().name);
+    }
+  }
+  return names;
+}
+
 std::size_t CountLines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 
 // One small run shared by the tests that only read its outputs.
@@ -119,8 +132,8 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
   EXPECT_EQ(report["configuration"]["width"], 160);
   ASSERT_EQ(report["frames"].size(), std::size(kModes));
   for (std::size_t i = 0; i < std::size(kModes); ++i) EXPECT_EQ(report["frames"][i]["mode"], kModes[i]);
-  // --post all: every registered pass, in registry order, each under its strategies.
-  const std::vector<std::string> passNames = passes::PassNames();
+  // --post all: every registered pass the modes feed, in registry order, each under its strategies.
+  const std::vector<std::string> passNames = PassesTheDefaultModesFeed();
   ASSERT_EQ(report["passes"].size(), passNames.size());
   std::size_t passDispatches = 0;
   for (std::size_t i = 0; i < passNames.size(); ++i) {
@@ -263,7 +276,30 @@ TEST(CliRun, QuickDefaultStudyWritesItsReportUnderTheWorkingDirectory) {
   const nlohmann::json report = RunInFreshDirectory("run --quick", scratch);
   EXPECT_EQ(report["configuration"]["width"], cli::kQuickWidth);
   EXPECT_EQ(report["configuration"]["height"], cli::kQuickHeight);
-  EXPECT_EQ(report["passes"].size(), passes::PassNames().size());
+  EXPECT_EQ(report["passes"].size(), PassesTheDefaultModesFeed().size());
+  fs::remove_all(scratch);
+}
+
+// A pass reading a 2-sample surface runs on the 2S frame when --modes has one, and naming it
+// without one is an error.
+TEST(CliRun, SmaaS2xRunsOnTheTwoSampleFrame) {
+  const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_run_s2x_" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  std::vector<std::string> args = SmallRun(scratch, scratch / "out", "2");
+  args.insert(args.end(), {"--post", "smaa-s2x"});
+  const CommandResult refused = RunAasim(args, scratch);
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_NE(refused.err.find("needs a frame with 2 coverage samples"), std::string::npos) << refused.err;
+  args.insert(args.end(), {"--modes", "1S/1Z/1F,2S/2Z/2F", "--pattern", "standard"});
+  const CommandResult run = RunAasim(args, scratch);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(ReadText(scratch / "out/report.json"));
+  ASSERT_EQ(report["passes"].size(), 1u);
+  EXPECT_EQ(report["passes"][0]["input_frame"], "2S/2Z/2F");
+  EXPECT_TRUE(report["passes"][0]["strategies_identical"].get<bool>());
+  for (const char* layer : {"edges.s0.png", "weights.s1.exr"}) {
+    EXPECT_TRUE(fs::is_regular_file(scratch / "out/images/passes/smaa-s2x/queue" / layer)) << layer;
+  }
   fs::remove_all(scratch);
 }
 
@@ -276,7 +312,7 @@ TEST(FullSize, NoArgumentsRunsTheDefaultStudy) {
   EXPECT_EQ(report["configuration"]["width"], 1920);
   EXPECT_EQ(report["configuration"]["height"], 1080);
   EXPECT_EQ(report["ground_truth"]["samples_per_pixel"], 256);
-  EXPECT_EQ(report["passes"].size(), passes::PassNames().size());
+  EXPECT_EQ(report["passes"].size(), PassesTheDefaultModesFeed().size());
   fs::remove_all(scratch);
 }
 

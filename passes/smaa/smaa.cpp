@@ -34,6 +34,12 @@ Config ConfigOf(Variant variant, const PassSettings& settings) {
   return config;
 }
 
+}  // namespace
+
+std::unique_ptr<Pass> MakeS2x(const PassInfo& info, const Config& config);
+
+namespace {
+
 class SmaaPass final : public Pass {
  public:
   SmaaPass(const PassInfo& info, const Config& config) : info_(info), smaa_(info.name, config, kDispatchNames) {}
@@ -106,6 +112,8 @@ constexpr VariantNames NamesOf(Variant variant) {
     case Variant::Luma: return {"smaa", "SMAA 1x: luma edges, orthogonal and diagonal searches, neighbourhood blend"};
     case Variant::Colour: return {"smaa-colour", "SMAA 1x with colour edges (max RGB difference)"};
     case Variant::Depth: return {"smaa-depth", "SMAA 1x with depth edges (no local contrast adaptation)"};
+    case Variant::S2x:
+      return {"smaa-s2x", "SMAA S2x: SMAA 1x on each sample of a 2-sample surface, blended (needs a 2S frame)"};
     case Variant::LumaPredicated:
       return {"smaa-predicated", "SMAA 1x: luma edges with thresholds predicated by the frame's depth"};
   }
@@ -115,6 +123,7 @@ constexpr VariantNames NamesOf(Variant variant) {
 PassInfo MakeInfo(Variant variant) {
   std::vector<FrameInput> inputs{FrameInput::Colour};
   if (variant == Variant::Depth || variant == Variant::LumaPredicated) inputs.push_back(FrameInput::Depth);
+  if (variant == Variant::S2x) inputs = {FrameInput::Eqaa};
   return {
       .name = NamesOf(variant).name,
       .description = NamesOf(variant).description,
@@ -122,10 +131,13 @@ PassInfo MakeInfo(Variant variant) {
       .settings = SettingsOf(variant),
       .presets = Presets(),
       .inputs = inputs,
-      .studiedDispatches = {kDispatchNames.weights},
+      .studiedDispatches = variant == Variant::S2x
+                               ? std::vector<std::string_view>{"smaa-s2x/s0/blending-weights", "smaa-s2x/s1/blending-weights"}
+                               : std::vector<std::string_view>{kDispatchNames.weights},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       .bytesPerPixel = kBytesPerPixel,
       .temporal = false,
+      .eqaaSamples = variant == Variant::S2x ? 2 : 0,
   };
 }
 
@@ -139,6 +151,7 @@ const PassInfo& Info() {
 
 template <Variant V>
 std::unique_ptr<Pass> Make(const PassSettings& settings) {
+  if constexpr (V == Variant::S2x) return MakeS2x(Info<V>(), ConfigOf(V, settings));
   return std::make_unique<SmaaPass>(Info<V>(), ConfigOf(V, settings));
 }
 
@@ -146,9 +159,11 @@ template const PassInfo& Info<Variant::Luma>();
 template const PassInfo& Info<Variant::Colour>();
 template const PassInfo& Info<Variant::Depth>();
 template const PassInfo& Info<Variant::LumaPredicated>();
+template const PassInfo& Info<Variant::S2x>();
 template std::unique_ptr<Pass> Make<Variant::Luma>(const PassSettings&);
 template std::unique_ptr<Pass> Make<Variant::Colour>(const PassSettings&);
 template std::unique_ptr<Pass> Make<Variant::Depth>(const PassSettings&);
 template std::unique_ptr<Pass> Make<Variant::LumaPredicated>(const PassSettings&);
+template std::unique_ptr<Pass> Make<Variant::S2x>(const PassSettings&);
 
 }  // namespace passes::smaa

@@ -18,8 +18,12 @@
 //   smaa/neighbourhood-      colour through an sRGB view (linear, float bilinear), weights ->
 //     blending               output RGBA8_SRGB; full-screen PS on every pixel, both strategies
 //
-// Registered variants (one registry line each): smaa (luma edges), smaa-colour, smaa-depth and
-// smaa-predicated (luma edges, thresholds predicated by the frame's depth). Presets low, medium,
+// Registered variants (one registry line each): smaa (luma edges), smaa-colour, smaa-depth,
+// smaa-predicated (luma edges, thresholds predicated by the frame's depth) and smaa-s2x (luma
+// SMAA 1x on each sample of a 2-sample EQAA surface, separated by a smaa-s2x/separate full-screen
+// pass reading the surface through the shader fetch path, with the subsample indices of
+// aa-facts §1.8; the second sample's neighbourhood blending blends onto the first's with factor
+// 0.5; dispatches smaa-s2x/s<k>/...). Presets low, medium,
 // high, ultra are SMAA.hlsl's (aa-facts §1.2); the defaults are HIGH's. Layers: "edges" (R, G)
 // and "weights" (R, G, B, A), the 8-bit texels as k / 255.
 
@@ -29,7 +33,7 @@
 
 namespace passes::smaa {
 
-enum class Variant { Luma, Colour, Depth, LumaPredicated };
+enum class Variant { Luma, Colour, Depth, LumaPredicated, S2x };
 
 template <Variant V>
 const PassInfo& Info();
