@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "raster/limits.h"
 #include "sim/colour.h"
@@ -151,10 +152,33 @@ const std::array<float, 255>& SrgbEncodeThresholds() {
 }
 }  // namespace
 
+namespace {
+// Floats in [0, 1] grouped by their top bits (2^15 ulps per bucket): the code of each bucket's
+// smallest float. A bucket is narrower than the gap between two thresholds except near the top,
+// so the code of a float is its bucket's plus at most a couple of threshold steps.
+constexpr int kSrgbBucketShift = 15;
+const std::vector<std::uint8_t>& SrgbEncodeBuckets() {
+  static const std::vector<std::uint8_t> buckets = [] {
+    const std::array<float, 255>& t = SrgbEncodeThresholds();
+    const std::uint32_t count = (std::bit_cast<std::uint32_t>(1.0f) >> kSrgbBucketShift) + 1;
+    std::vector<std::uint8_t> b(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const float first = std::bit_cast<float>(i << kSrgbBucketShift);
+      b[i] = static_cast<std::uint8_t>(std::upper_bound(t.begin(), t.end(), first) - t.begin());
+    }
+    return b;
+  }();
+  return buckets;
+}
+}  // namespace
+
 std::uint8_t FloatToSrgb8(float linear) {
-  if (std::isnan(linear)) return 0;
+  if (!(linear > 0.0f)) return 0;  // NaN, zero and negatives
+  if (linear >= 1.0f) return 255;
   const std::array<float, 255>& t = SrgbEncodeThresholds();
-  return static_cast<std::uint8_t>(std::upper_bound(t.begin(), t.end(), linear) - t.begin());
+  int code = SrgbEncodeBuckets()[std::bit_cast<std::uint32_t>(linear) >> kSrgbBucketShift];
+  while (code < 255 && linear >= t[static_cast<std::size_t>(code)]) ++code;
+  return static_cast<std::uint8_t>(code);
 }
 
 float Srgb8ToFloat(std::uint8_t code) { return SrgbDecodeTable()[code]; }

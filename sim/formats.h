@@ -131,6 +131,11 @@ bool CanHold(Format format) {
 template <FormattableTexel T>
 T Quantize(Format format, T value) {
   if constexpr (FloatTexel<T>) {
+    if (format == Format::RGBA8Srgb && kTexelComponents<T> == 4) {  // every colour store of a pass
+      for (int c = 0; c < 3; ++c) TexelComponent(value, c) = Unorm8ToFloat(FloatToSrgb8(TexelComponent(value, c)));
+      TexelComponent(value, 3) = Unorm8ToFloat(FloatToUnorm8(TexelComponent(value, 3)));
+      return value;
+    }
     for (int c = 0; c < kTexelComponents<T>; ++c) {
       TexelComponent(value, c) = QuantizeChannel(format, c, TexelComponent(value, c));
     }
