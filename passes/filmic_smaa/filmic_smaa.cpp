@@ -34,19 +34,24 @@ static_assert(kTileBlocks <= kGroupSide * kGroupSide, "one 2x2 block per thread 
 constexpr int kTileBytes = kTileSide * kTileSide * static_cast<int>(sizeof(float));
 
 // Hand counts of this file's kernels as GCN VALU instructions (no reference shader exists: the
-// seed's deck shows none). The edge path dominates where a wave holds an edge pixel.
+// seed's deck shows none). The detect branches: every wave runs the early exit, a wave holding a
+// candidate pixel also runs the window and the scores (~490 in the pixel form: 33 fetch addresses
+// and lumas ~130, 10 edge scores of 6+6 two-edge patterns on ~40 shared deltas ~330, the choices
+// ~30; ~360 in the compute form, whose tile holds lumas). The share of such waves is the scene's:
+// counted as 1 in 10 (SMAA's work set touches 5% of the 8x8 tiles on the default scene and 21% on
+// 2CylinderEngine at 640x360, `aasim run --quick`; edges grow with the side, tiles with the area,
+// so about a third of that at 1080p; a candidate is any pixel past the early exit, a superset).
 constexpr WorkSetKernels kKernels{
     .detectDispatch = kEdgeDispatch,
     .consumeDispatch = kVerticalDispatch,
-    .detectPixel = {.vgprs = 48, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 160,
-                    .source = "hand count of passes/filmic_smaa: every wave runs the early exit (3 fetch addresses, "
-                              "3 lumas, 2 deltas and compares, ~20); a wave holding a candidate runs the window (33 "
-                              "addresses and lumas, ~130), 10 edge scores of 6+6 two-edge patterns on ~40 shared "
-                              "deltas (~330) and the choices (~30), ~510; counted as a third of the waves doing so"},
-    .detectCompute = {.vgprs = 48, .sgprs = 24, .ldsBytesPerGroup = kTileBytes, .valuInstructionsPerWave = 150,
-                      .source = "hand count of passes/filmic_smaa: the pixel form's 160 minus the 36 fetch addresses "
-                                "(LDS reads instead, not VALU), plus the tile fill (3 gathers' addresses, 4 lumas, "
-                                "~20) and the append (~8)"},
+    .detectPixel = {.vgprs = 48, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 70,
+                    .source = "hand count of passes/filmic_smaa: early exit for every wave (3 fetch addresses, 3 "
+                              "lumas, 2 deltas and compares, the stencil export, ~20) plus the candidate path "
+                              "(~490) on 1 wave in 10"},
+    .detectCompute = {.vgprs = 48, .sgprs = 24, .ldsBytesPerGroup = kTileBytes, .valuInstructionsPerWave = 74,
+                      .source = "hand count of passes/filmic_smaa: the tile fill (3 gathers' addresses, 4 lumas, LDS "
+                                "addressing, ~20), the early exit from LDS (~10), the thread mapping and append (~8), "
+                                "plus the candidate path without fetches or lumas (~360) on 1 wave in 10"},
     .consume = {.vgprs = 32, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 150,
                 .source = "hand count of SMAABlendingWeightCalculationPS's vertical half (search pair ~70, "
                           "search-length and area addressing ~25, corner rounding ~25) plus the two-pixel blend "
