@@ -3,6 +3,7 @@
 #include "passes/work_set.h"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -18,10 +19,10 @@ constexpr sim::KernelInfo kQueueArgumentsKernel{
 
 WorkSet::WorkSet(std::string_view pass) : pass_(pass) {}
 
-void WorkSet::Prepare(Strategy strategy, int width, int height) {
-  if (width != width_ || height != height_) {
+void WorkSet::Prepare(Strategy strategy, int consumes, int width, int height) {
+  if (width != width_ || height != height_ || (!queues_.empty() && queues_.size() != static_cast<std::size_t>(consumes))) {
     stencil_.reset();
-    queue_.reset();
+    queues_.clear();
     arguments_.reset();
     width_ = width;
     height_ = height;
@@ -32,37 +33,43 @@ void WorkSet::Prepare(Strategy strategy, int width, int height) {
     return;
   }
   // Every pixel may join the work set: a full-size queue cannot overflow.
-  if (!queue_) queue_.emplace(Name("queue"), static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-  if (!arguments_) arguments_.emplace(Name("dispatch-args"), 3);
-  queue_->ResetCounter();
+  const auto capacity = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  while (queues_.size() < static_cast<std::size_t>(consumes)) {
+    queues_.emplace_back(Name(queues_.empty() ? "queue" : "queue-" + std::to_string(queues_.size() + 1)), capacity);
+  }
+  if (!arguments_) arguments_.emplace(Name("dispatch-args"), 3 * queues_.size());
+  for (sim::AppendBuffer<std::uint32_t>& queue : queues_) queue.ResetCounter();
 }
 
 std::uint64_t WorkSet::StencilPixels() const {
   std::uint64_t marked = 0;
   for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) marked += stencil_->Surface().Stencil(x, y) == 1;
+    for (int x = 0; x < width_; ++x) marked += stencil_->Surface().Stencil(x, y) != 0;
   }
   return marked;
 }
 
-WorkSetShape WorkSet::Shape(Strategy strategy) const {
-  std::vector<std::uint8_t> marked(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0);
-  const auto mark = [&](int x, int y) { marked[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] = 1; };
+std::vector<std::uint8_t> WorkSet::Membership(Strategy strategy) const {
+  std::vector<std::uint8_t> joined(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0);
+  const auto at = [&](int x, int y) -> std::uint8_t& {
+    return joined[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)];
+  };
   if (strategy == Strategy::StencilCulled) {
     for (int y = 0; y < height_; ++y) {
-      for (int x = 0; x < width_; ++x) {
-        if (stencil_->Surface().Stencil(x, y) == 1) mark(x, y);
-      }
+      for (int x = 0; x < width_; ++x) at(x, y) = stencil_->Surface().Stencil(x, y);
     }
   } else {
-    const std::span<const std::uint32_t> items = queue_->Storage().Elements().first(queue_->Count());
-    for (const std::uint32_t item : items) {
-      const glm::ivec2 pixel = sim::UnpackPixelItem(item);
-      mark(pixel.x, pixel.y);
+    for (std::size_t q = 0; q < queues_.size(); ++q) {
+      for (const std::uint32_t item : queues_[q].Storage().Elements().first(queues_[q].Count())) {
+        const glm::ivec2 pixel = sim::UnpackPixelItem(item);
+        at(pixel.x, pixel.y) = static_cast<std::uint8_t>(q + 1);
+      }
     }
   }
-  return ShapeOf(marked, width_, height_);
+  return joined;
 }
+
+WorkSetShape WorkSet::Shape(Strategy strategy) const { return ShapeOf(Membership(strategy), width_, height_); }
 
 WorkSetShape ShapeOf(std::span<const std::uint8_t> marked, int width, int height) {
   const auto count = [&](int side) {
@@ -83,13 +90,16 @@ WorkSetShape ShapeOf(std::span<const std::uint8_t> marked, int width, int height
 
 void WorkSet::WriteQueueArguments(sim::Machine& machine) {
   sim::Dispatch d(Name("queue-args"), kQueueArgumentsKernel);
-  const sim::BufferView<std::uint32_t> count = d.Read(queue_->Counter());
+  std::vector<sim::BufferView<std::uint32_t>> counts;
+  for (const sim::AppendBuffer<std::uint32_t>& queue : queues_) counts.push_back(d.Read(queue.Counter()));
   const sim::RwBufferView<std::uint32_t> args = d.ReadWrite(*arguments_);
   machine.Compute(d, {.threads = {1, 1, 1}, .groupSize = {1, 1, 1}}, [&](sim::ComputeLane& lane) {
-    const std::uint32_t n = count.Load(lane, 0);
-    args.Store(lane, 0, (n + sim::kWaveLanes - 1) / sim::kWaveLanes);
-    args.Store(lane, 1, 1);
-    args.Store(lane, 2, 1);
+    for (std::size_t q = 0; q < counts.size(); ++q) {
+      const std::uint32_t n = counts[q].Load(lane, 0);
+      args.Store(lane, 3 * q, (n + sim::kWaveLanes - 1) / sim::kWaveLanes);
+      args.Store(lane, 3 * q + 1, 1);
+      args.Store(lane, 3 * q + 2, 1);
+    }
   });
 }
 

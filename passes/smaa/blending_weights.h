@@ -39,6 +39,18 @@ class BlendingWeights {
 
   glm::vec4 operator()(const sim::LaneBase& lane, int x, int y) const;
 
+  // The pixel's two edges one at a time, as the pixel above processes them (Filmic SMAA's dual
+  // edge blending runs each on its own): the edges texel at the pixel's centre; the top edge's
+  // (R, G) weights, diagonal patterns first, then the horizontal search (a diagonal found skips
+  // the left edge); the left edge's (B, A) weights from the vertical search (aa-facts §1.4, §1.5).
+  struct TopEdge {
+    glm::vec2 weights;
+    bool diagonal;
+  };
+  glm::vec2 EdgesAt(const sim::LaneBase& lane, int x, int y) const { return Edges(lane, metrics_.Texcoord(x, y)); }
+  TopEdge TopEdgeWeights(const sim::LaneBase& lane, int x, int y, glm::vec2 e) const;
+  glm::vec2 LeftEdgeWeights(const sim::LaneBase& lane, int x, int y) const;
+
  private:
   glm::vec2 Edges(const sim::LaneBase& lane, glm::vec2 uv, glm::ivec2 offset = {0, 0}) const {
     return v_.edges.SampleBilinear(lane, uv, sim::AddressMode::Clamp, offset);
@@ -317,27 +329,32 @@ inline glm::vec2 BlendingWeights::DiagonalWeights(const sim::LaneBase& lane, glm
 
 // ---- The pixel ----
 
-inline glm::vec4 BlendingWeights::operator()(const sim::LaneBase& lane, int x, int y) const {
+inline BlendingWeights::TopEdge BlendingWeights::TopEdgeWeights(const sim::LaneBase& lane, int x, int y,
+                                                                glm::vec2 e) const {
   const glm::vec2 uv = metrics_.Texcoord(x, y);
-  const glm::vec2 pixcoord = uv * glm::vec2(metrics_.width, metrics_.height);
+  glm::vec2 diagonal(0.0f);
+  if (config_.Diagonals()) diagonal = DiagonalWeights(lane, uv, e);
+  // Diagonals win: a diagonal found skips the horizontal and the vertical processing.
+  if (diagonal.x != -diagonal.y) return {diagonal, true};
+  return {HorizontalWeights(lane, uv, uv * glm::vec2(metrics_.width, metrics_.height)), false};
+}
+
+inline glm::vec2 BlendingWeights::LeftEdgeWeights(const sim::LaneBase& lane, int x, int y) const {
+  const glm::vec2 uv = metrics_.Texcoord(x, y);
+  return VerticalWeights(lane, uv, uv * glm::vec2(metrics_.width, metrics_.height));
+}
+
+inline glm::vec4 BlendingWeights::operator()(const sim::LaneBase& lane, int x, int y) const {
   glm::vec4 weights(0.0f);
-  glm::vec2 e = Edges(lane, uv);
+  glm::vec2 e = EdgesAt(lane, x, y);
   if (e.y > 0.0f) {  // edge at the top
-    glm::vec2 diagonal(0.0f);
-    if (config_.Diagonals()) diagonal = DiagonalWeights(lane, uv, e);
-    // Diagonals win: a diagonal found skips the horizontal and the vertical processing.
-    if (diagonal.x == -diagonal.y) {
-      const glm::vec2 horizontal = HorizontalWeights(lane, uv, pixcoord);
-      weights.x = horizontal.x;
-      weights.y = horizontal.y;
-    } else {
-      weights.x = diagonal.x;
-      weights.y = diagonal.y;
-      e.x = 0.0f;
-    }
+    const TopEdge top = TopEdgeWeights(lane, x, y, e);
+    weights.x = top.weights.x;
+    weights.y = top.weights.y;
+    if (top.diagonal) e.x = 0.0f;
   }
   if (e.x > 0.0f) {  // edge at the left
-    const glm::vec2 vertical = VerticalWeights(lane, uv, pixcoord);
+    const glm::vec2 vertical = LeftEdgeWeights(lane, x, y);
     weights.z = vertical.x;
     weights.w = vertical.y;
   }
