@@ -75,6 +75,7 @@ void PrintSummary(std::ostream& out, const Study& study, const RunCommandOptions
   for (const StudyFrame& frame : study.frames) {
     PrintQuality(out, frame.image);
     if (frame.fetchResolve) PrintQuality(out, *frame.fetchResolve);
+    if (frame.srgb8) PrintQuality(out, *frame.srgb8);
   }
   for (const StudyPass& pass : study.passes) PrintQuality(out, pass.image);
   for (const StudyPass& pass : study.passes) PrintPass(out, study, pass);

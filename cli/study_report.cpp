@@ -145,6 +145,9 @@ nlohmann::ordered_json FrameJson(const StudyFrame& frame, const RunCommandOption
           {"fetch_resolve", frame.fetchResolve ? nlohmann::ordered_json{{"folder", kImages + frame.fetchResolve->folder},
                                                                         {"quality", QualityJson(frame.fetchResolve->quality.scores)}}
                                                : nlohmann::ordered_json(nullptr)},
+          {"srgb8", frame.srgb8 ? nlohmann::ordered_json{{"folder", kImages + frame.srgb8->folder},
+                                                         {"quality", QualityJson(frame.srgb8->quality.scores)}}
+                                : nlohmann::ordered_json(nullptr)},
           {"fragment_counters", FragmentCountersJson(frame.fragments)}};
 }
 
@@ -185,6 +188,7 @@ std::string QualityCsv(const Study& study) {
   for (const StudyFrame& frame : study.frames) {
     row(frame.image, "frame");
     if (frame.fetchResolve) row(*frame.fetchResolve, "fetch resolve");
+    if (frame.srgb8) row(*frame.srgb8, "frame sRGB8");
   }
   for (const StudyPass& pass : study.passes) row(pass.image, "pass");
   return csv;
@@ -209,6 +213,7 @@ std::vector<Shown> ShownImages(const Study& study, const sim::Texture2D<glm::vec
   for (const StudyFrame& frame : study.frames) {
     shown.push_back({frame.image.label, &frame.image.colour, &frame.image});
     if (frame.fetchResolve) shown.push_back({frame.fetchResolve->label, &frame.fetchResolve->colour, &*frame.fetchResolve});
+    if (frame.srgb8) shown.push_back({frame.srgb8->label, &frame.srgb8->colour, &*frame.srgb8});
   }
   for (const StudyPass& pass : study.passes) {
     shown.push_back({pass.name + " on " + pass.inputFrame, &pass.image.colour, &pass.image});
@@ -231,7 +236,9 @@ ReportSection RunSection(const Study& study, const RunCommandOptions& options) {
           std::to_string(passes::CountSelected(truth.edgeMask)) + " edge pixels (pixels whose rays saw more than one "
           "primitive). " + (truth.cacheHit ? "Read from the cache." : "Rendered for this run.") +
           " Post passes work on the " + (study.frames.empty() ? std::string("-") : study.frames.front().image.label) +
-          " frame.",
+          " frame (a pass reading a multisampled surface, on the first mode with its sample count) as an 8-bit sRGB "
+          "target holds it, shown as 'sRGB8': compare a pass with that image, not with the float frame, whose FLIP "
+          "does not include the 8-bit quantisation every pass output has.",
       kEstimateNote,
       "Host time " + FormatFixed(study.hostSeconds, 1) + " s on " + std::to_string(study.threads) +
           " threads (the simulator's own wall time, not a GPU time). Full-resolution images, EXR layers and every "
@@ -468,6 +475,10 @@ void StageFrameFiles(OutputDir& dir, const StudyFrame& frame, const sim::FramePi
   if (frame.fetchResolve) {
     StageColour(dir, kImages + frame.fetchResolve->folder + "/colour.png", frame.fetchResolve->colour);
     StageErrorFiles(dir, *frame.fetchResolve);
+  }
+  if (frame.srgb8) {
+    StageColour(dir, kImages + frame.srgb8->folder + "/colour.png", frame.srgb8->colour);
+    StageErrorFiles(dir, *frame.srgb8);
   }
 }
 

@@ -153,11 +153,23 @@ class StudyRunner {
           Step(observer_, "metrics " + fetch.label, [&] { return ScoreAgainstGroundTruth(fetch.colour, study_.groundTruth); });
       frame.fetchResolve = std::move(fetch);
     }
+    if (FeedsAPass(mode)) {
+      ScoredImage srgb8{label + " sRGB8", frame.image.folder + "/srgb8",
+                        passes::DecodedSrgb8("frame sRGB8", passes::Srgb8ColourTarget("frame sRGB8", pipeline.Colour())), {}};
+      srgb8.quality =
+          Step(observer_, "metrics " + srgb8.label, [&] { return ScoreAgainstGroundTruth(srgb8.colour, study_.groundTruth); });
+      frame.srgb8 = std::move(srgb8);
+    }
     if (observer_.frameDone) observer_.frameDone(frame, pipeline);
     for (const passes::PassConfig& pass : config_.passes) {
       if (PassFrame(config_, pass.Info()) == mode) RunPass(pass, pipeline, label);
     }
     study_.frames.push_back(std::move(frame));
+  }
+
+  bool FeedsAPass(std::size_t mode) const {
+    return std::any_of(config_.passes.begin(), config_.passes.end(),
+                       [&](const passes::PassConfig& pass) { return PassFrame(config_, pass.Info()) == mode; });
   }
 
   void RunPass(const passes::PassConfig& config, const sim::FramePipeline& pipeline, const std::string& frameLabel) {

@@ -44,6 +44,9 @@ struct StudyFrame {
   // sample's FetchSample (UNKNOWN reads fragment 0, hw-facts §1.4). Computed on the host from the
   // surface, not run as a dispatch.
   std::optional<ScoredImage> fetchResolve{};
+  // Frames post passes read: the colour as an 8-bit sRGB target holds it (what the passes start
+  // from, passes::Srgb8ColourTarget), so a pass is compared with its own input's quantisation.
+  std::optional<ScoredImage> srgb8{};
   fmask::FragmentCounters fragments{};
   std::size_t drawDispatch = 0;  // index into Study::dispatches
 };

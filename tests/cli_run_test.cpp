@@ -160,8 +160,12 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
     EXPECT_EQ(draw["frame"], kModes[i]);
   }
   const std::string quality = ReadText(Out() / "quality.csv");
-  // Header, the modes, the fetch resolves of the two EQAA modes (F < S), the passes.
-  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + 2 + passNames.size());
+  // Header, the modes, the fetch resolves of the two EQAA modes (F < S), the 1S frame as the passes'
+  // 8-bit sRGB target holds it, the passes.
+  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + 2 + 1 + passNames.size());
+  EXPECT_NE(quality.find("\n1S/1Z/1F sRGB8,frame sRGB8,"), std::string::npos) << quality;
+  EXPECT_FALSE(report["frames"][0]["srgb8"].is_null());
+  EXPECT_TRUE(report["frames"][1]["srgb8"].is_null());
   EXPECT_NE(quality.find("\n16S/8Z/4F,frame,"), std::string::npos) << quality;
   EXPECT_NE(quality.find("\n8S/4Z/2F fetch,fetch resolve,"), std::string::npos) << quality;
   for (std::size_t i = 0; i < std::size(kModes); ++i) {
