@@ -154,7 +154,7 @@ float DepthStencilSurface::AnchorDepth(int x, int y, int anchor) const {
 
 void DepthStencilSurface::SetStencil(int x, int y, std::uint8_t value) {
   stencil_[PixelIndex(x, y)] = value;
-  RefreshHiStencil(x / kTileSize, y / kTileSize);
+  tiles_[TileIndex(x / kTileSize, y / kTileSize)].hiStencilStale = true;
 }
 
 bool DepthStencilSurface::HiZRejects(int tx, int ty, const DepthState& depth, float triMin,
@@ -176,9 +176,10 @@ bool DepthStencilSurface::HiZRejects(int tx, int ty, const DepthState& depth, fl
 
 // A tile may be skipped only when a pretest matching the draw's stencil test says no pixel can
 // pass, and failing has no side effect (otherwise the skipped pixels would miss a stencil write).
-bool DepthStencilSurface::HiStencilRejects(int tx, int ty, const StencilState& stencil) const {
+bool DepthStencilSurface::HiStencilRejects(int tx, int ty, const StencilState& stencil) {
   if (!stencil.enable || stencil.failOp != StencilOp::Keep) return false;
   const ZTile& tile = tiles_[TileIndex(tx, ty)];
+  if (tile.hiStencilStale) RefreshHiStencil(tx, ty);
   for (int k = 0; k < kHiStencilPretests; ++k) {
     const HiStencilPretest& pretest = config_.hiStencil[k];
     if (pretest.enable && pretest.func == stencil.func && pretest.ref == stencil.ref &&
@@ -204,6 +205,7 @@ void DepthStencilSurface::RefreshHiStencil(int tx, int ty) {
     tile.stencilMayPass[k] = mayPass;
     tile.stencilMayFail[k] = mayFail;
   }
+  tile.hiStencilStale = false;
 }
 
 PixelDepthResult DepthStencilSurface::TestPixel(int x, int y, SampleMask covered,
@@ -367,7 +369,7 @@ void DepthStencilSurface::FinishTriangleOnTile(int tx, int ty, bool wholeTileWri
     tile.zMin = std::min(tile.zMin, writtenMin);
     tile.zMax = std::max(tile.zMax, writtenMax);
   }
-  if (stencilWritten) RefreshHiStencil(tx, ty);
+  if (stencilWritten) tile.hiStencilStale = true;
 }
 
 void DepthStencilSurface::CountTileStates(RasterCounters& counters) const {

@@ -100,6 +100,10 @@ struct ZTile {
   float zMax = 1.0f;
   std::array<bool, kHiStencilPretests> stencilMayPass{};
   std::array<bool, kHiStencilPretests> stencilMayFail{};
+  // A stencil write marks the hi-stencil bits stale; they are recomputed from the tile's pixels
+  // when next read, the same bits an update after every write would give (a full-screen stencil
+  // export would otherwise rescan its tile once per pixel).
+  bool hiStencilStale = false;
   std::array<ZPlane, kMaxZPlanesPerTile> planes{};
 };
 
@@ -144,7 +148,7 @@ class DepthStencilSurface {
 
   // --- Used by the rasterizer, one tile at a time (tiles of different bins never alias). ---
   bool HiZRejects(int tx, int ty, const DepthState& depth, float triMin, float triMax) const;
-  bool HiStencilRejects(int tx, int ty, const StencilState& stencil) const;
+  bool HiStencilRejects(int tx, int ty, const StencilState& stencil);
   PixelDepthResult TestPixel(int x, int y, SampleMask covered, const TriangleSetup& tri,
                              const DepthState& depth, const StencilState& stencil,
                              RasterCounters& counters);
