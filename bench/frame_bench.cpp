@@ -23,6 +23,7 @@
 #include "study/frame_scene.h"
 #include "passes/compare.h"
 #include "passes/registry.h"
+#include "raster/sample_pattern.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
 
@@ -75,13 +76,33 @@ std::vector<StrategyRun> RunPass(const passes::RegisteredPass& registered, sim::
   return runs;
 }
 
+// A pass reading an S-sample EQAA surface (SMAA S2x) gets its own frame: {S, S, S} with the
+// standard pattern, rendered untimed before it runs.
+sim::FrameSettings SettingsFor(int eqaaSamples) {
+  sim::FrameSettings settings;
+  if (eqaaSamples != 0) {
+    settings.eqaa = {eqaaSamples, eqaaSamples, eqaaSamples};
+    settings.pattern = raster::MakeBuiltinPattern("standard", eqaaSamples);
+  }
+  return settings;
+}
+
 FrameRun RunFrame(const sim::FrameGeometry& geometry, sim::Machine& machine, sim::FramePipeline& pipeline) {
   FrameRun run;
   machine.ClearReports();
   const auto start = std::chrono::steady_clock::now();
   pipeline.Render(geometry);
   run.frameMs = MsSince(start);
-  for (const passes::RegisteredPass& pass : passes::AllPasses()) run.passes.push_back(RunPass(pass, machine, pipeline));
+  for (const passes::RegisteredPass& pass : passes::AllPasses()) {
+    const int samples = pass.info().eqaaSamples;
+    if (samples == 0 || samples == pipeline.Settings().eqaa.coverageSamples) {
+      run.passes.push_back(RunPass(pass, machine, pipeline));
+      continue;
+    }
+    sim::FramePipeline own(machine, SettingsFor(samples));
+    own.Render(geometry);
+    run.passes.push_back(RunPass(pass, machine, own));
+  }
   run.reports = machine.Reports();
   run.colour = {pipeline.Colour().Texels().begin(), pipeline.Colour().Texels().end()};
   return run;
