@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "sim/formats.h"
+#include "sim/parallel.h"
 
 namespace passes {
 
@@ -35,19 +36,29 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture) {
   return {std::move(name), {"Y"}, texture.Width(), texture.Height(), {texels.begin(), texels.end()}};
 }
 
+namespace {
+// Per-texel host conversions of a whole frame, by rows on the worker threads (independent
+// texels: the result does not depend on the thread count).
+template <typename Convert>
+void ConvertTexels(std::span<const glm::vec4> in, std::span<glm::vec4> out, int width, Convert convert) {
+  const auto row = static_cast<std::size_t>(width);
+  sim::ParallelFor(in.size() / row, [&](std::size_t y) {
+    for (std::size_t i = y * row; i < (y + 1) * row; ++i) out[i] = convert(in[i]);
+  });
+}
+}  // namespace
+
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear) {
   sim::Texture2D<glm::vec4> target(std::move(name), linear.Width(), linear.Height(), sim::Format::RGBA8Srgb);
-  std::span<glm::vec4> out = target.Texels();
-  std::span<const glm::vec4> in = linear.Texels();
-  for (std::size_t i = 0; i < in.size(); ++i) out[i] = sim::Quantize(sim::Format::RGBA8Srgb, in[i]);
+  ConvertTexels(linear.Texels(), target.Texels(), linear.Width(),
+                [](const glm::vec4& texel) { return sim::Quantize(sim::Format::RGBA8Srgb, texel); });
   return target;
 }
 
 sim::Texture2D<glm::vec4> DecodedSrgb8(std::string name, const sim::Texture2D<glm::vec4>& target) {
   sim::Texture2D<glm::vec4> linear(std::move(name), target.Width(), target.Height(), 4);
-  std::span<glm::vec4> out = linear.Texels();
-  std::span<const glm::vec4> in = target.Texels();
-  for (std::size_t i = 0; i < in.size(); ++i) out[i] = sim::Decode(sim::Format::RGBA8Srgb, in[i]);
+  ConvertTexels(target.Texels(), linear.Texels(), target.Width(),
+                [](const glm::vec4& texel) { return sim::Decode(sim::Format::RGBA8Srgb, texel); });
   return linear;
 }
 

@@ -69,9 +69,10 @@ template <glm::length_t N>
 PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& texture,
                   std::vector<std::string> channels) {
   PassLayer layer{std::move(name), std::move(channels), texture.Width(), texture.Height(), {}};
-  layer.values.reserve(texture.Texels().size() * N);
-  for (const glm::vec<N, float>& texel : texture.Texels()) {
-    for (glm::length_t c = 0; c < N; ++c) layer.values.push_back(texel[c]);
+  const std::span<const glm::vec<N, float>> texels = texture.Texels();
+  layer.values.resize(texels.size() * N);
+  for (std::size_t i = 0; i < texels.size(); ++i) {
+    for (glm::length_t c = 0; c < N; ++c) layer.values[i * N + static_cast<std::size_t>(c)] = texels[i][c];
   }
   return layer;
 }
