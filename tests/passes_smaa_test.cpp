@@ -238,6 +238,44 @@ TEST(SmaaWeights, StairStepsMatchTheAnalyticAreas) {
   }
 }
 
+// A one-pixel line across the whole image is two straight edges without ends: nothing to blend.
+TEST(SmaaWeights, OnePixelLinesAcrossTheImageAreLeftAlone) {
+  const auto horizontal = ImageOf(64, 16, [](int, int y) { return y == 7 ? kBright : kDark; });
+  const auto vertical = ImageOf(16, 64, [](int x, int) { return x == 7 ? kBright : kDark; });
+  for (const auto* image : {&horizontal, &vertical}) {
+    const SmaaRun run = RunSmaa("smaa", *image);
+    EXPECT_GT(run.output.workItems, 0u);
+    for (int y = 0; y < image->Height(); ++y) {
+      for (int x = 0; x < image->Width(); ++x) {
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(run.At("weights", x, y, c), 0.0f) << x << "," << y;
+      }
+    }
+  }
+}
+
+// A U: a one-row bump of m pixels on a long horizontal edge. Its top run is crossed in its own row
+// at both ends (code 3 and 3, aa-facts §1.4), so the revectorised line dips below the run at both
+// ends: only R (the pixel blends towards the one above), mirror-symmetric about the bump's middle,
+// largest at the ends.
+TEST(SmaaWeights, AUShapeBlendsSymmetricallyMostAtItsEnds) {
+  for (const int m : {3, 4, 7, 10}) {
+    const int a = 20, y0 = 8;
+    const auto image = ImageOf(64, 16, [&](int x, int y) {
+      return y >= y0 || (y == y0 - 1 && x >= a && x < a + m) ? kBright : kDark;
+    });
+    const SmaaRun run = RunSmaa("smaa:max_search_steps_diag=0,corner_rounding=100", image);
+    for (int l = 0; l < m; ++l) {
+      const int x = a + l, mirrored = a + m - 1 - l;
+      EXPECT_EQ(run.At("weights", x, y0 - 1, 1), 0.0f) << "m " << m << " pixel " << l;
+      EXPECT_EQ(run.At("weights", x, y0 - 1, 0), run.At("weights", mirrored, y0 - 1, 0)) << "m " << m << " pixel " << l;
+      if (l > 0 && l <= (m - 1) / 2) {
+        EXPECT_LE(run.At("weights", x, y0 - 1, 0), run.At("weights", x - 1, y0 - 1, 0)) << "m " << m << " pixel " << l;
+      }
+    }
+    EXPECT_GT(run.At("weights", a, y0 - 1, 0), 0.0f) << "m " << m;
+  }
+}
+
 // ---- Symmetry ----
 
 // Transposing the image transposes the edges (R <-> G) and the weights (RG <-> BA) and the output.
