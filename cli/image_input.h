@@ -38,7 +38,7 @@ struct InputImage {
 // PNG: 8 bits per channel, grey, grey + alpha, RGB or RGBA (palette images as stb_image expands
 // them). Colour codes are decoded as an sRGB view reads them (sim::Srgb8ToFloat: the nearest
 // float to the IEC 61966-2-1 curve of sim/colour.h), so sim::EncodeSrgb8 gives back every code;
-// alpha is code / 255. The hardened PNG reader of scene textures does the decoding
+// alpha as a UNORM8 channel reads (sim::Unorm8ToFloat). The hardened PNG reader of scene textures does the decoding
 // (scenes::DecodeImage). OpenEXR: channels R, G, B and optionally A of the data window, any
 // pixel type, every value finite.
 InputImage ReadInputImage(const std::filesystem::path& path, const ImageSizeCheck& checkSize);
