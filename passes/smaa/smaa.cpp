@@ -135,7 +135,8 @@ PassInfo MakeInfo(Variant variant) {
                                ? std::vector<std::string_view>{"smaa-s2x/s0/blending-weights", "smaa-s2x/s1/blending-weights"}
                                : std::vector<std::string_view>{kDispatchNames.weights},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
-      .bytesPerPixel = kBytesPerPixel,
+      // S2x holds both samples' runs and the two separated sample textures at once.
+      .bytesPerPixel = variant == Variant::S2x ? 2 * kBytesPerPixel + 2 * sizeof(glm::vec4) : kBytesPerPixel,
       .temporal = false,
       .eqaaSamples = variant == Variant::S2x ? 2 : 0,
   };
