@@ -10,6 +10,8 @@
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,15 +62,31 @@ double MsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::vector<StrategyRun> RunPass(const passes::RegisteredPass& registered, sim::Machine& machine,
-                                 const sim::FramePipeline& pipeline) {
-  const passes::PassInfo& info = registered.info();
+// Pass instances per registered pass and strategy. The timed frames reuse one set, as a renderer
+// keeps its passes and their render targets from frame to frame; the determinism check makes a
+// fresh set, so reuse must not change a result.
+using PassInstances = std::vector<std::vector<std::unique_ptr<passes::Pass>>>;
+
+PassInstances MakeInstances() {
+  PassInstances instances;
+  for (const passes::RegisteredPass& registered : passes::AllPasses()) {
+    const passes::PassInfo& info = registered.info();
+    std::vector<std::unique_ptr<passes::Pass>>& perStrategy = instances.emplace_back();
+    for (std::size_t s = 0; s < info.strategies.size(); ++s) {
+      perStrategy.push_back(registered.make(passes::PassSettings(info.name, info.settings)));
+    }
+  }
+  return instances;
+}
+
+std::vector<StrategyRun> RunPass(const passes::PassInfo& info, std::vector<std::unique_ptr<passes::Pass>>& instances,
+                                 sim::Machine& machine, const sim::FramePipeline& pipeline) {
   std::vector<StrategyRun> runs;
-  for (const passes::Strategy strategy : info.strategies) {
-    const std::unique_ptr<passes::Pass> pass = registered.make(passes::PassSettings(info.name, info.settings));
+  for (std::size_t s = 0; s < info.strategies.size(); ++s) {
+    const passes::Strategy strategy = info.strategies[s];
     StrategyRun run{.strategy = strategy, .output = {}, .firstDispatch = machine.Reports().size()};
     const auto start = std::chrono::steady_clock::now();
-    run.output = pass->Run(machine, passes::FrameInputsOf(pipeline), strategy);
+    run.output = instances[s]->Run(machine, passes::FrameInputsOf(pipeline), strategy);
     run.ms = MsSince(start);
     run.endDispatch = machine.Reports().size();
     runs.push_back(std::move(run));
@@ -87,21 +105,24 @@ sim::FrameSettings SettingsFor(int eqaaSamples) {
   return settings;
 }
 
-FrameRun RunFrame(const sim::FrameGeometry& geometry, sim::Machine& machine, sim::FramePipeline& pipeline) {
+FrameRun RunFrame(const sim::FrameGeometry& geometry, sim::Machine& machine, sim::FramePipeline& pipeline,
+                  PassInstances& instances) {
   FrameRun run;
   machine.ClearReports();
   const auto start = std::chrono::steady_clock::now();
   pipeline.Render(geometry);
   run.frameMs = MsSince(start);
-  for (const passes::RegisteredPass& pass : passes::AllPasses()) {
-    const int samples = pass.info().eqaaSamples;
+  const std::span<const passes::RegisteredPass> registered = passes::AllPasses();
+  for (std::size_t p = 0; p < registered.size(); ++p) {
+    const passes::PassInfo& info = registered[p].info();
+    const int samples = info.eqaaSamples;
     if (samples == 0 || samples == pipeline.Settings().eqaa.coverageSamples) {
-      run.passes.push_back(RunPass(pass, machine, pipeline));
+      run.passes.push_back(RunPass(info, instances[p], machine, pipeline));
       continue;
     }
     sim::FramePipeline own(machine, SettingsFor(samples));
     own.Render(geometry);
-    run.passes.push_back(RunPass(pass, machine, own));
+    run.passes.push_back(RunPass(info, instances[p], machine, own));
   }
   run.reports = machine.Reports();
   run.colour = {pipeline.Colour().Texels().begin(), pipeline.Colour().Texels().end()};
@@ -132,7 +153,8 @@ FrameRun CaptureFrame(const sim::FrameGeometry& geometry, const sim::GpuConfig& 
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   sim::Machine machine(gpu);
   sim::FramePipeline pipeline(machine, sim::FrameSettings{});
-  return RunFrame(geometry, machine, pipeline);
+  PassInstances fresh = MakeInstances();
+  return RunFrame(geometry, machine, pipeline, fresh);
 }
 
 const sim::DispatchReport* Find(const FrameRun& frame, const StrategyRun& run, std::string_view name) {
@@ -192,10 +214,11 @@ int RunBench(const BenchOptions& options) {
                                     static_cast<std::size_t>(options.threads));
     sim::Machine machine(gpu);
     sim::FramePipeline pipeline(machine, sim::FrameSettings{});
-    const FrameRun warmUp = RunFrame(geometry, machine, pipeline);
+    PassInstances instances = MakeInstances();
+    const FrameRun warmUp = RunFrame(geometry, machine, pipeline, instances);
     std::printf("warm-up frame: %.1f ms (not counted)\n", warmUp.frameMs);
     for (int frame = 0; frame < options.frames; ++frame) {
-      last = RunFrame(geometry, machine, pipeline);
+      last = RunFrame(geometry, machine, pipeline, instances);
       frameMs.push_back(last.frameMs);
       passMs.resize(last.passes.size());
       for (std::size_t p = 0; p < last.passes.size(); ++p) {

@@ -55,6 +55,11 @@ sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture
   return target;
 }
 
+void StoreSrgb8(const sim::Texture2D<glm::vec4>& linear, sim::Texture2D<glm::vec4>& target) {
+  ConvertTexels(linear.Texels(), target.Texels(), linear.Width(),
+                [](const glm::vec4& texel) { return sim::Quantize(sim::Format::RGBA8Srgb, texel); });
+}
+
 sim::Texture2D<glm::vec4> DecodedSrgb8(std::string name, const sim::Texture2D<glm::vec4>& target) {
   sim::Texture2D<glm::vec4> linear(std::move(name), target.Width(), target.Height(), 4);
   ConvertTexels(target.Texels(), linear.Texels(), target.Width(),

@@ -81,6 +81,15 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& te
 // texture (the renderer's store, host side, not a pass dispatch), so its views read the codes
 // (UNORM, gamma values) or decode them (sRGB, linear) as the reference shaders do (aa-facts §1.9).
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear);
+// The same into an RGBA8 sRGB texture of the frame's size a pass keeps across frames.
+void StoreSrgb8(const sim::Texture2D<glm::vec4>& linear, sim::Texture2D<glm::vec4>& target);
+// A texture a pass keeps across frames, (re)made when the frame size changes.
+template <typename T, typename... Args>
+sim::Texture2D<T>& FrameTexture(std::optional<sim::Texture2D<T>>& kept, const std::string& name, int width, int height,
+                                Args... args) {
+  if (!kept || kept->Width() != width || kept->Height() != height) kept.emplace(name, width, height, args...);
+  return *kept;
+}
 // What an RGBA8 sRGB target holds, decoded to linear floats for metrics and image output.
 sim::Texture2D<glm::vec4> DecodedSrgb8(std::string name, const sim::Texture2D<glm::vec4>& target);
 

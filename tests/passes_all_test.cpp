@@ -111,6 +111,39 @@ TEST_P(EveryPass, OneAndTwoThreadsGiveIdenticalImagesAndCounters) {
   }
 }
 
+// A pass keeps its render targets from frame to frame: a second frame through the same instance
+// gives what a fresh instance gives (nothing of the first frame leaks into the second).
+TEST_P(EveryPass, AnInstanceReusedForASecondFrameGivesWhatAFreshOneGives) {
+  if (Info().temporal) GTEST_SKIP() << "a temporal pass keeps history on purpose";
+  const float aspect = static_cast<float>(kWidth) / kHeight;
+  const study::FrameScene frameScene = study::ToFrameScene(scenes::LoadScene("builtin:default", aspect), aspect);
+  sim::Machine machine(sim::GpuConfigByName("ps4-class"));
+  sim::FrameSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  if (Info().eqaaSamples != 0) {
+    settings.eqaa = {Info().eqaaSamples, Info().eqaaSamples, Info().eqaaSamples};
+    settings.pattern = raster::MakeBuiltinPattern("standard", Info().eqaaSamples);
+  }
+  sim::FramePipeline pipeline(machine, settings);
+  pipeline.Render(frameScene.Geometry());
+  // The second frame: the first mirrored, so its edges lie elsewhere.
+  sim::Texture2D<glm::vec4> mirrored("mirrored", kWidth, kHeight, 4);
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) mirrored.At(x, y) = pipeline.Colour().At(kWidth - 1 - x, y);
+  }
+  FrameInputs second = FrameInputsOf(pipeline);
+  second.colour = &mirrored;
+  for (const Strategy strategy : Info().strategies) {
+    const std::unique_ptr<passes::Pass> reused = Pass().make(PassSettings(Info().name, Info().settings));
+    reused->Run(machine, FrameInputsOf(pipeline), strategy);
+    const PassOutput again = reused->Run(machine, second, strategy);
+    const PassOutput fresh = Pass().make(PassSettings(Info().name, Info().settings))->Run(machine, second, strategy);
+    EXPECT_TRUE(CompareOutputs(fresh, again).Identical()) << StrategyName(strategy) << ": "
+                                                          << CompareOutputs(fresh, again).Describe();
+  }
+}
+
 TEST_P(EveryPass, TheWorkSetShapeIsTheSameUnderEveryStrategy) {
   std::optional<WorkSetShape> first;
   for (const Strategy strategy : Info().strategies) {

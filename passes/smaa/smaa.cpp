@@ -47,8 +47,12 @@ class SmaaPass final : public Pass {
   const PassInfo& Info() const override { return info_; }
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
-    const sim::Texture2D<glm::vec4> colour = Srgb8ColourTarget("smaa/colour", *frame.colour);
-    sim::Texture2D<glm::vec4> blended("smaa/output", frame.Width(), frame.Height(), sim::Format::RGBA8Srgb);
+    // The frame's render targets, kept across frames as a renderer keeps them.
+    sim::Texture2D<glm::vec4>& colour =
+        FrameTexture(colour_, "smaa/colour", frame.Width(), frame.Height(), sim::Format::RGBA8Srgb);
+    StoreSrgb8(*frame.colour, colour);
+    sim::Texture2D<glm::vec4>& blended =
+        FrameTexture(blended_, "smaa/output", frame.Width(), frame.Height(), sim::Format::RGBA8Srgb);
     PassOutput output;
     const Smaa1x::Frame result = smaa_.Run(machine, strategy, colour, frame.depth, blended, Blend::Replace);
     output.SetWorkSet(result.workSet);
@@ -61,6 +65,7 @@ class SmaaPass final : public Pass {
  private:
   const PassInfo& info_;
   Smaa1x smaa_;
+  std::optional<sim::Texture2D<glm::vec4>> colour_, blended_;
 };
 
 std::vector<SettingInfo> SettingsOf(Variant variant) {

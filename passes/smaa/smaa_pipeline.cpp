@@ -38,10 +38,15 @@ Smaa1x::Smaa1x(std::string_view pass, const Config& config, DispatchNames names)
 
 Smaa1x::Frame Smaa1x::Run(sim::Machine& machine, Strategy strategy, const sim::Texture2D<glm::vec4>& colour,
                           const sim::Texture2D<float>* depth, sim::Texture2D<glm::vec4>& target, Blend blend) {
-  Frame frame{Intermediates(colour.Width(), colour.Height()), {}};
-  frame.workSet = EdgesAndWeights(machine, strategy, colour, depth, frame.targets);
-  NeighbourhoodBlend(machine, colour, frame.targets, target, blend);
-  return frame;
+  if (!targets_ || targets_->edges.Width() != colour.Width() || targets_->edges.Height() != colour.Height()) {
+    targets_.emplace(colour.Width(), colour.Height());
+  } else {
+    targets_->edges.Fill(glm::vec2(0.0f));
+    targets_->weights.Fill(glm::vec4(0.0f));
+  }
+  const WorkSetShape workSet = EdgesAndWeights(machine, strategy, colour, depth, *targets_);
+  NeighbourhoodBlend(machine, colour, *targets_, target, blend);
+  return {*targets_, workSet};
 }
 
 WorkSetShape Smaa1x::EdgesAndWeights(sim::Machine& machine, Strategy strategy,

@@ -2,6 +2,7 @@
 // SMAA 1x's three passes on one 8-bit sRGB colour texture (smaa.h's diagram), shared by SMAA 1x
 // and S2x (which runs it once per MSAA sample).
 
+#include <optional>
 #include <string>
 
 #include "passes/pass.h"
@@ -25,7 +26,7 @@ class Smaa1x {
   Smaa1x(std::string_view pass, const Config& config, DispatchNames names);
 
   struct Frame {
-    Intermediates targets;
+    const Intermediates& targets;  // kept by this object until its next Run
     WorkSetShape workSet;
   };
   // colour: RGBA8 sRGB; depth: the depth edges' or predication's buffer (may be null when the
@@ -43,6 +44,7 @@ class Smaa1x {
   DispatchNames names_;
   LookupTables tables_;
   WorkSet workSet_;
+  std::optional<Intermediates> targets_;  // kept across frames, cleared every frame
 };
 
 }  // namespace passes::smaa

@@ -17,7 +17,7 @@ struct Intermediates {
   Intermediates(int width, int height)
       : edges("smaa/edges", width, height, sim::Format::RG8Unorm),
         weights("smaa/weights", width, height, sim::Format::RGBA8Unorm) {}
-  // Created cleared: the edge pass writes only edge pixels and the weight pass only reads them.
+  // Cleared every frame: the edge pass writes only edge pixels and the weight pass only reads them.
   sim::Texture2D<glm::vec2> edges;
   sim::Texture2D<glm::vec4> weights;
 };
