@@ -15,6 +15,7 @@
 #include "passes/compare.h"
 #include "passes/filmic_smaa/edge_suppression.h"
 #include "passes/registry.h"
+#include "passes_test_util.h"
 #include "sim/colour.h"
 #include "sim/formats.h"
 #include "sim/gpu_config.h"
@@ -76,18 +77,9 @@ TEST(FilmicSmaaSuppression, TheTopEdgeRuleIsTheLeftEdgeRuleTransposed) {
 
 // ---- The rule on images, against SMAA 1x ----
 
-using Codes = std::function<int(int x, int y)>;
+using testing::Codes;
+using testing::GreyImage;
 
-sim::Texture2D<glm::vec4> ImageOf(int width, int height, const Codes& code) {
-  sim::Texture2D<glm::vec4> image("input", width, height, 16);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const float linear = sim::Srgb8ToFloat(static_cast<std::uint8_t>(code(x, y)));
-      image.At(x, y) = glm::vec4(linear, linear, linear, 1.0f);
-    }
-  }
-  return image;
-}
 
 PassOutput RunPass(std::string_view spec, const sim::Texture2D<glm::vec4>& image, Strategy strategy = Strategy::DeferredQueue) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
@@ -112,7 +104,7 @@ float LeftEdge(const PassOutput& output, int x, int y) { return At(LayerNamed(ou
 // SMAA's far top-top delta (160) exceeds twice the edge's (40) and drops the edge; no pattern
 // through the bright pixel meets the weak edge's endpoints, so the morphological rule keeps it.
 TEST(FilmicSmaaSuppression, KeepsAWeakEdgeThatLocalContrastAdaptationDrops) {
-  const auto image = ImageOf(12, 10, [](int x, int y) { return x == 5 && y == 2 ? 240 : x >= 5 ? 80 : 40; });
+  const auto image = GreyImage(12, 10, [](int x, int y) { return x == 5 && y == 2 ? 240 : x >= 5 ? 80 : 40; });
   EXPECT_EQ(LeftEdge(RunPass("smaa", image), 5, 4), 0.0f);
   EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 5, 4), 1.0f);
   EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 5, 7), 1.0f);
@@ -122,7 +114,7 @@ TEST(FilmicSmaaSuppression, KeepsAWeakEdgeThatLocalContrastAdaptationDrops) {
 // SMAA's factor 2, so SMAA keeps both; the parallel line's pattern scores higher than any through
 // the weak edge, so the morphological rule drops it.
 TEST(FilmicSmaaSuppression, DropsAWeakEdgeBesideAStrongerParallelLineThatSmaaKeeps) {
-  const auto image = ImageOf(12, 10, [](int x, int) { return x < 5 ? 40 : x == 5 ? 80 : 140; });
+  const auto image = GreyImage(12, 10, [](int x, int) { return x < 5 ? 40 : x == 5 ? 80 : 140; });
   EXPECT_EQ(LeftEdge(RunPass("smaa", image), 5, 4), 1.0f);
   EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 5, 4), 0.0f);
   EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 6, 4), 1.0f);
@@ -132,7 +124,7 @@ TEST(FilmicSmaaSuppression, DropsAWeakEdgeBesideAStrongerParallelLineThatSmaaKee
 // line through the weak edge's top endpoint outscores every pattern through it, so the weak edge
 // is dropped there and kept away from the crossing; the strong line is kept across it.
 TEST(FilmicSmaaSuppression, AWeakLineIsDroppedWhereItMeetsAStrongerCrossingLine) {
-  const auto image = ImageOf(16, 16, [](int x, int y) { return (y < 8 ? 200 : 40) + (x >= 10 ? 30 : 0); });
+  const auto image = GreyImage(16, 16, [](int x, int y) { return (y < 8 ? 200 : 40) + (x >= 10 ? 30 : 0); });
   const PassOutput output = RunPass("filmic-smaa", image);
   EXPECT_EQ(LeftEdge(output, 10, 8), 0.0f);
   EXPECT_EQ(LeftEdge(output, 10, 12), 1.0f);
@@ -149,7 +141,7 @@ sim::Texture2D<glm::vec4> RandomImage(unsigned seed, bool blocks) {
   std::mt19937 random(seed);
   const int width = 37 + static_cast<int>(seed % 5), height = 29 + static_cast<int>(seed % 7);
   std::uniform_int_distribution<int> level(0, 4);
-  if (!blocks) return ImageOf(width, height, [&](int, int) { return 40 + 40 * level(random); });
+  if (!blocks) return GreyImage(width, height, [&](int, int) { return 40 + 40 * level(random); });
   std::vector<int> codes(static_cast<std::size_t>(width * height), 40);
   std::uniform_int_distribution<int> x0(0, width - 1), y0(0, height - 1), side(1, 9);
   for (int block = 0; block < 30; ++block) {
@@ -158,7 +150,7 @@ sim::Texture2D<glm::vec4> RandomImage(unsigned seed, bool blocks) {
       for (int x = bx; x < std::min(width, bx + bw); ++x) codes[static_cast<std::size_t>(y * width + x)] = code;
     }
   }
-  return ImageOf(width, height, [&](int x, int y) { return codes[static_cast<std::size_t>(y * width + x)]; });
+  return GreyImage(width, height, [&](int x, int y) { return codes[static_cast<std::size_t>(y * width + x)]; });
 }
 
 // A vertical item at P writes P and its left neighbour; a horizontal one P and the pixel above.
@@ -203,7 +195,7 @@ TEST(FilmicSmaaDualEdges, NoPixelIsWrittenByTwoItemsOfOneDispatch) {
 // write the line's pixel: the left one wins the tie, the right one gives its item up (its edge
 // stays for the searches).
 TEST(FilmicSmaaDualEdges, OfTwoAdjacentEqualEdgesTheLeftOneKeepsItsItem) {
-  const auto image = ImageOf(16, 12, [](int x, int) { return x == 7 ? 200 : 40; });
+  const auto image = GreyImage(16, 12, [](int x, int) { return x == 7 ? 200 : 40; });
   const PassOutput output = RunPass("filmic-smaa", image);
   for (int y = 0; y < 12; ++y) {
     EXPECT_EQ(At(LayerNamed(output, "items"), 7, y), 1.0f) << y;
@@ -243,7 +235,7 @@ struct Errors {
 
 // White shape on black: L1 errors against the true coverage, and filmic's output against SMAA's.
 Errors ErrorsOf(int width, int height, const std::function<bool(double, double)>& inside) {
-  const auto image = ImageOf(width, height, [&](int x, int y) { return inside(x + 0.5, y + 0.5) ? 255 : 0; });
+  const auto image = GreyImage(width, height, [&](int x, int y) { return inside(x + 0.5, y + 0.5) ? 255 : 0; });
   const PassOutput smaa = RunPass("smaa", image), filmic = RunPass("filmic-smaa", image);
   Errors errors;
   for (int y = 0; y < height; ++y) {

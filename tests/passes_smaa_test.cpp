@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "passes/registry.h"
+#include "passes_test_util.h"
 #include "sim/colour.h"
 #include "sim/formats.h"
 #include "sim/gpu_config.h"
@@ -19,20 +20,9 @@
 namespace passes {
 namespace {
 
-// Gamma-space grey levels as 8-bit codes, stored linear (what the sRGB target decodes back to
-// the same codes).
-using Codes = std::function<int(int x, int y)>;
+using testing::Codes;
+using testing::GreyImage;
 
-sim::Texture2D<glm::vec4> ImageOf(int width, int height, const Codes& code) {
-  sim::Texture2D<glm::vec4> image("input", width, height, 16);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const float linear = sim::Srgb8ToFloat(static_cast<std::uint8_t>(code(x, y)));
-      image.At(x, y) = glm::vec4(linear, linear, linear, 1.0f);
-    }
-  }
-  return image;
-}
 
 struct SmaaRun {
   PassOutput output;
@@ -79,7 +69,7 @@ constexpr int kDark = 40, kBright = 200;
 // ---- Edge detection (aa-facts §1.3) ----
 
 TEST(SmaaEdges, AVerticalStepMarksTheLeftEdgeOfTheColumnRightOfIt) {
-  const auto image = ImageOf(16, 8, [](int x, int) { return x < 6 ? kDark : kBright; });
+  const auto image = GreyImage(16, 8, [](int x, int) { return x < 6 ? kDark : kBright; });
   const SmaaRun run = RunSmaa("smaa", image);
   for (int y = 0; y < 8; ++y) {
     for (int x = 0; x < 16; ++x) {
@@ -92,7 +82,7 @@ TEST(SmaaEdges, AVerticalStepMarksTheLeftEdgeOfTheColumnRightOfIt) {
 
 // The threshold test is step(threshold, delta): a delta equal to the threshold is an edge.
 TEST(SmaaEdges, ADeltaEqualToTheThresholdIsAnEdge) {
-  const auto image = ImageOf(8, 4, [](int x, int) { return x < 4 ? 100 : 151; });
+  const auto image = GreyImage(8, 4, [](int x, int) { return x < 4 ? 100 : 151; });
   // The luma delta the reference computes: dot(rgb, (0.2126, 0.7152, 0.0722)) on k / 255 codes.
   const auto luma = [](int code) {
     const float v = sim::Unorm8ToFloat(static_cast<std::uint8_t>(code));
@@ -111,7 +101,7 @@ TEST(SmaaEdges, ADeltaEqualToTheThresholdIsAnEdge) {
 TEST(SmaaEdges, LocalContrastAdaptationDropsAWeakEdgeBesideAStrongOne) {
   // Columns: ... 100 | 150 (the edge, delta 50) | the right neighbour: 255 (delta 105) drops it.
   for (const auto& [right, kept] : {std::pair{255, false}, std::pair{200, true}, std::pair{150, true}}) {
-    const auto image = ImageOf(8, 1, [right = right](int x, int) { return x < 3 ? 100 : x == 3 ? 150 : right; });
+    const auto image = GreyImage(8, 1, [right = right](int x, int) { return x < 3 ? 100 : x == 3 ? 150 : right; });
     const SmaaRun run = RunSmaa("smaa:threshold=0.05", image);
     EXPECT_EQ(run.At("edges", 3, 0, 0), kept ? 1.0f : 0.0f) << "right neighbour " << right;
   }
@@ -122,13 +112,13 @@ TEST(SmaaEdges, LocalContrastAdaptationDropsAWeakEdgeBesideAStrongOne) {
 TEST(SmaaEdges, FarDeltasAreMeasuredFromTheNeighbourInLumaAndFromTheCentreInColour) {
   // Codes 45 45 100 [130] 130: the edge's own delta is 30, so a far delta above 60 drops it. Luma
   // measures |100 - 45| = 55 and keeps it; colour measures |130 - 45| = 85 and drops it.
-  const auto image = ImageOf(5, 1, [](int x, int) { return x >= 3 ? 130 : x == 2 ? 100 : 45; });
+  const auto image = GreyImage(5, 1, [](int x, int) { return x >= 3 ? 130 : x == 2 ? 100 : 45; });
   EXPECT_EQ(RunSmaa("smaa:threshold=0.05", image).At("edges", 3, 0, 0), 1.0f);
   EXPECT_EQ(RunSmaa("smaa-colour:threshold=0.05", image).At("edges", 3, 0, 0), 0.0f);
 }
 
 TEST(SmaaEdges, DepthEdgesUseATenthOfTheThreshold) {
-  const auto image = ImageOf(8, 4, [](int, int) { return 128; });
+  const auto image = GreyImage(8, 4, [](int, int) { return 128; });
   sim::Texture2D<float> depth("depth", 8, 4, 4, 0.5f);
   for (int y = 0; y < 4; ++y) {
     for (int x = 4; x < 8; ++x) depth.At(x, y) = 0.5f + 0.0101f;
@@ -141,7 +131,7 @@ TEST(SmaaEdges, DepthEdgesUseATenthOfTheThreshold) {
 TEST(SmaaEdges, PredicationLowersTheThresholdOnlyWhereTheDepthHasAnEdge) {
   // A luma step of about 0.16: above SMAA's 0.1 but below the predicated 0.2 away from depth
   // edges, above 0.12 on them.
-  const auto image = ImageOf(16, 4, [](int x, int) { return x < 8 ? 100 : 141; });
+  const auto image = GreyImage(16, 4, [](int x, int) { return x < 8 ? 100 : 141; });
   sim::Texture2D<float> flat("depth", 16, 4, 4, 0.5f);
   EXPECT_EQ(RunSmaa("smaa", image).output.workItems, 4u);
   EXPECT_EQ(RunSmaa("smaa-predicated", image, Strategy::DeferredQueue, &flat).output.workItems, 0u);
@@ -155,7 +145,7 @@ TEST(SmaaEdges, PredicationLowersTheThresholdOnlyWhereTheDepthHasAnEdge) {
 // ---- Blending weights: where SMAA has nothing to blend ----
 
 TEST(SmaaWeights, StraightEdgesWithoutEndsGetNoWeight) {
-  const auto image = ImageOf(64, 32, [](int, int y) { return y < 16 ? kDark : kBright; });
+  const auto image = GreyImage(64, 32, [](int, int y) { return y < 16 ? kDark : kBright; });
   const SmaaRun run = RunSmaa("smaa", image);
   EXPECT_EQ(run.output.workItems, 64u);
   for (int y = 0; y < 32; ++y) {
@@ -169,7 +159,7 @@ TEST(SmaaWeights, StraightEdgesWithoutEndsGetNoWeight) {
 // Every edge of a checkerboard is one pixel long and crossed at both ends in both rows: a "+"
 // pattern at each end, whose area is zero (aa-facts §1.6).
 TEST(SmaaWeights, ACheckerboardIsLeftAlone) {
-  const auto image = ImageOf(16, 16, [](int x, int y) { return (x + y) % 2 ? kDark : kBright; });
+  const auto image = GreyImage(16, 16, [](int x, int y) { return (x + y) % 2 ? kDark : kBright; });
   const SmaaRun run = RunSmaa("smaa:preset=medium", image);
   for (int y = 0; y < 16; ++y) {
     for (int x = 0; x < 16; ++x) ASSERT_EQ(OutputCode(run, x, y), (x + y) % 2 ? kDark : kBright) << x << "," << y;
@@ -225,7 +215,7 @@ AreaPair ZArea(int l, int r) {
 TEST(SmaaWeights, StairStepsMatchTheAnalyticAreas) {
   for (int n = 1; n <= 16; ++n) {
     const int width = 4 * n + 8, height = 12, y0 = 4;
-    const auto image = ImageOf(width, height, [&](int x, int y) { return y >= y0 + x / n ? kBright : kDark; });
+    const auto image = GreyImage(width, height, [&](int x, int y) { return y >= y0 + x / n ? kBright : kDark; });
     const SmaaRun run = RunSmaa("smaa:max_search_steps_diag=0,corner_rounding=100", image);
     for (int k = 1; k <= 2; ++k) {  // runs away from the image borders
       for (int l = 0; l < n; ++l) {
@@ -240,8 +230,8 @@ TEST(SmaaWeights, StairStepsMatchTheAnalyticAreas) {
 
 // A one-pixel line across the whole image is two straight edges without ends: nothing to blend.
 TEST(SmaaWeights, OnePixelLinesAcrossTheImageAreLeftAlone) {
-  const auto horizontal = ImageOf(64, 16, [](int, int y) { return y == 7 ? kBright : kDark; });
-  const auto vertical = ImageOf(16, 64, [](int x, int) { return x == 7 ? kBright : kDark; });
+  const auto horizontal = GreyImage(64, 16, [](int, int y) { return y == 7 ? kBright : kDark; });
+  const auto vertical = GreyImage(16, 64, [](int x, int) { return x == 7 ? kBright : kDark; });
   for (const auto* image : {&horizontal, &vertical}) {
     const SmaaRun run = RunSmaa("smaa", *image);
     EXPECT_GT(run.output.workItems, 0u);
@@ -260,7 +250,7 @@ TEST(SmaaWeights, OnePixelLinesAcrossTheImageAreLeftAlone) {
 TEST(SmaaWeights, AUShapeBlendsSymmetricallyMostAtItsEnds) {
   for (const int m : {3, 4, 7, 10}) {
     const int a = 20, y0 = 8;
-    const auto image = ImageOf(64, 16, [&](int x, int y) {
+    const auto image = GreyImage(64, 16, [&](int x, int y) {
       return y >= y0 || (y == y0 - 1 && x >= a && x < a + m) ? kBright : kDark;
     });
     const SmaaRun run = RunSmaa("smaa:max_search_steps_diag=0,corner_rounding=100", image);
@@ -287,8 +277,8 @@ TEST(SmaaSymmetry, TransposingTheImageTransposesEdgesWeightsAndOutput) {
     const bool bar = x > 30 && x < 44 && y > 5 && y < 9 + x / 8;
     return disc ? kBright : bar ? 150 : kDark;
   };
-  const auto image = ImageOf(n, n, shapes);
-  const auto transposed = ImageOf(n, n, [&](int x, int y) { return shapes(y, x); });
+  const auto image = GreyImage(n, n, shapes);
+  const auto transposed = GreyImage(n, n, [&](int x, int y) { return shapes(y, x); });
   for (const char* spec : {"smaa:max_search_steps_diag=0", "smaa:preset=medium", "smaa-colour:preset=low"}) {
     const SmaaRun a = RunSmaa(spec, image), b = RunSmaa(spec, transposed);
     for (int y = 0; y < n; ++y) {
@@ -309,7 +299,7 @@ TEST(SmaaSymmetry, TransposingTheImageTransposesEdgesWeightsAndOutput) {
 // A long edge with one step: every preset searches further than the one before it (steps of
 // 2 px, aa-facts §1.2), and the search stops at the ends it can reach.
 TEST(SmaaPresets, EachPresetSearchesFurther) {
-  const auto image = ImageOf(256, 16, [](int x, int y) { return y < (x < 128 ? 8 : 9) ? kDark : kBright; });
+  const auto image = GreyImage(256, 16, [](int x, int y) { return y < (x < 128 ? 8 : 9) ? kDark : kBright; });
   std::uint64_t previous = 0;
   for (const char* preset : {"low", "medium", "high", "ultra"}) {
     const SmaaRun run = RunSmaa(std::string("smaa:preset=") + preset, image);
@@ -332,7 +322,7 @@ double Coverage(int x, int y, const std::function<bool(double, double)>& inside)
 
 // The L1 error against the true coverage of a white shape on black, before and after SMAA.
 std::pair<double, double> ErrorBeforeAndAfter(int width, int height, const std::function<bool(double, double)>& inside) {
-  const auto image = ImageOf(width, height, [&](int x, int y) { return inside(x + 0.5, y + 0.5) ? 255 : 0; });
+  const auto image = GreyImage(width, height, [&](int x, int y) { return inside(x + 0.5, y + 0.5) ? 255 : 0; });
   const SmaaRun run = RunSmaa("smaa", image);
   double before = 0.0, after = 0.0;
   for (int y = 0; y < height; ++y) {
