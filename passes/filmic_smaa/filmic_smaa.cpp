@@ -8,6 +8,7 @@
 
 #include "passes/filmic_smaa/edge_suppression.h"
 #include "passes/smaa/blending_weights.h"
+#include "passes/smaa/smaa.h"
 #include "passes/smaa/smaa_kernels.h"
 #include "passes/smaa/smaa_targets.h"
 #include "passes/work_set.h"
@@ -213,30 +214,11 @@ const PassInfo& Info() {
       .description = "Filmic SMAA's morphological part: pattern-score edge suppression, LDS luma tile, dual edge "
                      "blending (vertical then horizontal items, scattered writes)",
       .source = "passes/filmic_smaa/filmic_smaa.h",
-      // SMAA.hlsl's configuration macros (aa-facts §1.2); local contrast adaptation is replaced.
-      .settings =
-          {
-              {.name = "threshold", .defaultValue = 0.1, .min = 0.0, .max = 0.5, .minExclusive = true,
-               .doc = "SMAA_THRESHOLD: edge contrast in gamma space; patterns through an edge must score 2x it"},
-              {.name = "max_search_steps", .defaultValue = 16, .min = 0, .max = 98, .integer = true,
-               .doc = "SMAA_MAX_SEARCH_STEPS: orthogonal search steps per side, 2 px each"},
-              {.name = "max_search_steps_diag", .defaultValue = 8, .min = 0, .max = 20, .integer = true,
-               .doc = "SMAA_MAX_SEARCH_STEPS_DIAG: diagonal search steps per side, 1 px each; 0 disables diagonals"},
-              {.name = "corner_rounding", .defaultValue = 25, .min = 0, .max = 100,
-               .doc = "SMAA_CORNER_ROUNDING in percent; 100 disables corner detection"},
-          },
-      // SMAA_PRESET_LOW .. _ULTRA (aa-facts §1.2).
-      .presets =
-          {
-              {"low",
-               {{"threshold", 0.15}, {"max_search_steps", 4}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
-              {"medium",
-               {{"threshold", 0.1}, {"max_search_steps", 8}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
-              {"high",
-               {{"threshold", 0.1}, {"max_search_steps", 16}, {"max_search_steps_diag", 8}, {"corner_rounding", 25}}},
-              {"ultra",
-               {{"threshold", 0.05}, {"max_search_steps", 32}, {"max_search_steps_diag", 16}, {"corner_rounding", 25}}},
-          },
+      // SMAA.hlsl's configuration macros and presets (aa-facts §1.2); local contrast adaptation is
+      // replaced by the pattern scores.
+      .settings = smaa::SearchSettings("SMAA_THRESHOLD: edge contrast in gamma space; patterns through an edge "
+                                       "must score 2x it"),
+      .presets = smaa::SearchPresets(),
       .inputs = {FrameInput::Colour},
       .studiedDispatches = {kVerticalDispatch, kHorizontalDispatch},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},

@@ -69,18 +69,9 @@ class SmaaPass final : public Pass {
 };
 
 std::vector<SettingInfo> SettingsOf(Variant variant) {
-  // Defaults and ranges: SMAA.hlsl's configuration macros (aa-facts §1.2).
-  std::vector<SettingInfo> settings{
-      {.name = "threshold", .defaultValue = 0.1, .min = 0.0, .max = 0.5, .minExclusive = true,
-       .doc = variant == Variant::Depth ? "SMAA_THRESHOLD; depth edges use 0.1 x this (SMAA_DEPTH_THRESHOLD)"
-                                        : "SMAA_THRESHOLD: edge contrast in gamma space"},
-      {.name = "max_search_steps", .defaultValue = 16, .min = 0, .max = 98, .integer = true,
-       .doc = "SMAA_MAX_SEARCH_STEPS: orthogonal search steps per side, 2 px each"},
-      {.name = "max_search_steps_diag", .defaultValue = 8, .min = 0, .max = 20, .integer = true,
-       .doc = "SMAA_MAX_SEARCH_STEPS_DIAG: diagonal search steps per side, 1 px each; 0 disables diagonals"},
-      {.name = "corner_rounding", .defaultValue = 25, .min = 0, .max = 100,
-       .doc = "SMAA_CORNER_ROUNDING in percent; 100 disables corner detection"},
-  };
+  std::vector<SettingInfo> settings =
+      SearchSettings(variant == Variant::Depth ? "SMAA_THRESHOLD; depth edges use 0.1 x this (SMAA_DEPTH_THRESHOLD)"
+                                               : "SMAA_THRESHOLD: edge contrast in gamma space");
   if (variant != Variant::Depth) {
     settings.push_back({.name = "local_contrast_adaptation_factor", .defaultValue = 2.0, .min = 1.0, .max = 16.0,
                         .doc = "SMAA_LOCAL_CONTRAST_ADAPTATION_FACTOR: an edge survives if no neighbour delta "
@@ -97,17 +88,6 @@ std::vector<SettingInfo> SettingsOf(Variant variant) {
   return settings;
 }
 
-// SMAA_PRESET_LOW .. _ULTRA (aa-facts §1.2): LOW and MEDIUM disable diagonals and corners.
-std::vector<Preset> Presets() {
-  return {
-      {"low", {{"threshold", 0.15}, {"max_search_steps", 4}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
-      {"medium",
-       {{"threshold", 0.1}, {"max_search_steps", 8}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
-      {"high", {{"threshold", 0.1}, {"max_search_steps", 16}, {"max_search_steps_diag", 8}, {"corner_rounding", 25}}},
-      {"ultra",
-       {{"threshold", 0.05}, {"max_search_steps", 32}, {"max_search_steps_diag", 16}, {"corner_rounding", 25}}},
-  };
-}
 
 struct VariantNames {
   std::string_view name, description;
@@ -134,7 +114,7 @@ PassInfo MakeInfo(Variant variant) {
       .description = NamesOf(variant).description,
       .source = "passes/smaa/smaa.h",
       .settings = SettingsOf(variant),
-      .presets = Presets(),
+      .presets = SearchPresets(),
       .inputs = inputs,
       .studiedDispatches = variant == Variant::S2x
                                ? std::vector<std::string_view>{"smaa-s2x/s0/blending-weights", "smaa-s2x/s1/blending-weights"}
@@ -148,6 +128,31 @@ PassInfo MakeInfo(Variant variant) {
 }
 
 }  // namespace
+
+std::vector<SettingInfo> SearchSettings(std::string_view thresholdDoc) {
+  // Defaults and ranges: SMAA.hlsl's configuration macros (aa-facts §1.2).
+  return {
+      {.name = "threshold", .defaultValue = 0.1, .min = 0.0, .max = 0.5, .minExclusive = true, .doc = thresholdDoc},
+      {.name = "max_search_steps", .defaultValue = 16, .min = 0, .max = 98, .integer = true,
+       .doc = "SMAA_MAX_SEARCH_STEPS: orthogonal search steps per side, 2 px each"},
+      {.name = "max_search_steps_diag", .defaultValue = 8, .min = 0, .max = 20, .integer = true,
+       .doc = "SMAA_MAX_SEARCH_STEPS_DIAG: diagonal search steps per side, 1 px each; 0 disables diagonals"},
+      {.name = "corner_rounding", .defaultValue = 25, .min = 0, .max = 100,
+       .doc = "SMAA_CORNER_ROUNDING in percent; 100 disables corner detection"},
+  };
+}
+
+// SMAA_PRESET_LOW .. _ULTRA (aa-facts §1.2): LOW and MEDIUM disable diagonals and corners.
+std::vector<Preset> SearchPresets() {
+  return {
+      {"low", {{"threshold", 0.15}, {"max_search_steps", 4}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
+      {"medium",
+       {{"threshold", 0.1}, {"max_search_steps", 8}, {"max_search_steps_diag", 0}, {"corner_rounding", 100}}},
+      {"high", {{"threshold", 0.1}, {"max_search_steps", 16}, {"max_search_steps_diag", 8}, {"corner_rounding", 25}}},
+      {"ultra",
+       {{"threshold", 0.05}, {"max_search_steps", 32}, {"max_search_steps_diag", 16}, {"corner_rounding", 25}}},
+  };
+}
 
 template <Variant V>
 const PassInfo& Info() {

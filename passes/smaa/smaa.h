@@ -28,12 +28,20 @@
 // and "weights" (R, G, B, A), the 8-bit texels as k / 255.
 
 #include <memory>
+#include <string_view>
+#include <vector>
 
 #include "passes/pass.h"
 
 namespace passes::smaa {
 
 enum class Variant { Luma, Colour, Depth, LumaPredicated, S2x };
+
+// SMAA.hlsl's threshold and search settings (threshold, max_search_steps, max_search_steps_diag,
+// corner_rounding) and its presets LOW..ULTRA over them (aa-facts §1.2), for every pass built on
+// SMAA's searches; `thresholdDoc` says what the threshold means to that pass.
+std::vector<SettingInfo> SearchSettings(std::string_view thresholdDoc);
+std::vector<Preset> SearchPresets();
 
 template <Variant V>
 const PassInfo& Info();
