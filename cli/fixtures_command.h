@@ -24,12 +24,4 @@ CLI::App* AddFixturesCommand(CLI::App& app, FixturesCommandOptions& options);
 // fixture and file at the first mismatch, a missing file or a corrupt manifest.
 void RunFixturesCommand(const FixturesCommandOptions& options, std::ostream& summary);
 
-// Parses a manifest's text (`source` names it in errors) and checks its schema, version and that
-// it lists exactly the canonical fixture set, each fixture once. Throws std::runtime_error with
-// one line naming `source`. The fixtures themselves are verified by RunFixturesCommand.
-nlohmann::ordered_json ParseFixtureManifest(std::string_view text, const std::string& source);
-
-inline constexpr const char* kFixturesSchema = "aasim.fmask.fixtures";
-inline constexpr int kFixturesVersion = 1;
-
 }  // namespace cli

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "cli/fixtures_command.h"
+#include "cli/fixture_manifest.h"
 #include "fuzz/fuzz_target.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

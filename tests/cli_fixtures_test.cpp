@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/fixture_manifest.h"
 #include "cli/fixtures_command.h"
 #include "cli/output_dir.h"
 #include "fmask/fixtures.h"
