@@ -36,6 +36,54 @@ var imgs=document.images,ok=0;for(var i=0;i<imgs.length;i++){if(imgs[i].complete
 document.body.setAttribute('data-images',ok+'/'+imgs.length);
 document.body.setAttribute('data-errors',failed.join('\n'));});})();)";
 
+// The image comparer (ReportSection::imageComparer): its controls, then a script that collects the
+// report's grouped images (data-group, data-label) and shows two of one group stacked, the upper
+// one hidden (flip) or clipped at the slider (wipe). The viewer's data-shown attribute names what
+// is visible, for the headless-browser test.
+constexpr const char* kComparerMarkup = R"(<div id='cmp'><p>
+<label>A <select id='cmp-a'></select></label> <label>B <select id='cmp-b'></select></label>
+<label>region <select id='cmp-region'></select></label>
+<label>zoom <select id='cmp-zoom'><option value='1'>1x</option><option value='2'>2x</option><option value='4'>4x</option><option value='8'>8x</option></select></label>
+<label><input type='radio' name='cmp-mode' value='flip' checked> flip</label>
+<label><input type='radio' name='cmp-mode' value='wipe'> wipe</label>
+<button id='cmp-flip' type='button'>flip A/B (key f)</button>
+<input id='cmp-wipe' type='range' min='0' max='100' value='50' aria-label='wipe position'></p>
+<p id='cmp-caption'></p><div id='cmp-view' style='position:relative;display:inline-block'></div></div>)";
+
+constexpr const char* kComparerScript = R"((function(){
+function $(id){return document.getElementById(id);}
+var groups={},order=[],found=document.querySelectorAll('img[data-group]');
+for(var i=0;i<found.length;i++){var g=found[i].getAttribute('data-group');
+if(!groups[g]){groups[g]={};order.push(g);}groups[g][found[i].getAttribute('data-label')]=found[i];}
+var view=$('cmp-view'),selA=$('cmp-a'),selB=$('cmp-b'),region=$('cmp-region'),zoom=$('cmp-zoom'),
+wipe=$('cmp-wipe'),flip=$('cmp-flip'),showB=false;
+if(order.length===0){$('cmp').textContent='No images to compare.';return;}
+function layer(top){var img=document.createElement('img');img.className='zoom';
+img.style.cssText='display:block'+(top?';position:absolute;left:0;top:0':'');view.appendChild(img);return img;}
+var imgA=layer(false),imgB=layer(true);
+function fill(sel,items,chosen){sel.textContent='';items.forEach(function(t){var o=document.createElement('option');
+o.value=t;o.textContent=t;sel.appendChild(o);});sel.value=items.indexOf(chosen)>=0?chosen:items[0];}
+function labels(){return Object.keys(groups[region.value]);}
+function mode(){return document.querySelector('input[name=cmp-mode]:checked').value;}
+function place(img,source,z){img.src=source.src;img.alt=source.getAttribute('data-label');
+img.width=source.getAttribute('data-width')*z;img.height=source.getAttribute('data-height')*z;}
+function update(){var g=groups[region.value],a=g[selA.value],b=g[selB.value],z=+zoom.value,w=mode()==='wipe';
+place(imgA,a,z);place(imgB,b,z);wipe.disabled=!w;flip.disabled=w;
+imgB.style.clipPath=w?'inset(0 0 0 '+wipe.value+'%)':'none';imgB.style.visibility=(w||showB)?'visible':'hidden';
+var shown=w?selA.value+' | '+selB.value:(showB?selB.value:selA.value);view.setAttribute('data-shown',shown);
+$('cmp-caption').textContent=w?'A left of the line: '+selA.value+'; B right of it: '+selB.value
+:'Showing '+(showB?'B: ':'A: ')+shown;}
+function regionChanged(){var a=selA.value,b=selB.value,l=labels();fill(selA,l,a);fill(selB,l,b);update();}
+function toggle(){if(mode()!=='flip')return;showB=!showB;update();}
+fill(region,order,order[Math.min(1,order.length-1)]);
+var l=labels();fill(selA,l,l[0]);fill(selB,l,l[Math.min(1,l.length-1)]);
+var width=+groups[region.value][l[0]].getAttribute('data-width'),z=8;while(z>1&&width*z>640)z/=2;zoom.value=String(z);
+region.addEventListener('change',regionChanged);flip.addEventListener('click',toggle);
+[selA,selB,zoom,wipe].forEach(function(e){e.addEventListener('input',update);});
+document.querySelectorAll('input[name=cmp-mode]').forEach(function(e){e.addEventListener('change',update);});
+document.addEventListener('keydown',function(e){if(e.key==='f'&&!/^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName))toggle();});
+update();})();)";
+
 std::string Format(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.4g", value);
@@ -110,7 +158,12 @@ std::string RenderChart(const BarChart& chart) {
 std::string RenderImage(const ReportImage& image) {
   const bool zoomed = image.displayScale > 1;
   std::ostringstream html;
-  html << "<figure><img" << (zoomed ? " class='zoom'" : "") << " width='" << image.width * image.displayScale
+  html << "<figure><img" << (zoomed ? " class='zoom'" : "");
+  if (!image.group.empty()) {
+    html << " data-group='" << EscapeHtml(image.group) << "' data-label='" << EscapeHtml(image.title)
+         << "' data-width='" << image.width << "' data-height='" << image.height << "'";
+  }
+  html << " width='" << image.width * image.displayScale
        << "' height='" << image.height * image.displayScale << "' alt='" << EscapeHtml(image.title)
        << "' src='data:image/png;base64," << Base64(image.png) << "'><figcaption>" << EscapeHtml(image.title)
        << (zoomed ? " (x" + std::to_string(image.displayScale) + ")" : "") << "</figcaption></figure>";
@@ -172,9 +225,12 @@ std::string RenderHtml(const Report& report) {
   html << "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><script>" << kImageCheck
        << "</script><title>" << EscapeHtml(report.title)
        << "</title><style>" << kStyle << "</style></head><body><h1>" << EscapeHtml(report.title) << "</h1>";
+  bool comparer = false;
   for (const ReportSection& section : report.sections) {
     html << "<section><h2>" << EscapeHtml(section.title) << "</h2>";
     for (const std::string& p : section.paragraphs) html << "<p>" << EscapeHtml(p) << "</p>";
+    if (section.imageComparer && !comparer) html << kComparerMarkup;
+    comparer = comparer || section.imageComparer;
     if (!section.images.empty()) {
       html << "<div>";
       for (const ReportImage& image : section.images) html << RenderImage(image);
@@ -185,7 +241,9 @@ std::string RenderHtml(const Report& report) {
     html << "</section>";
   }
   html << "<section><h2>Configuration</h2><pre>" << EscapeHtml(report.configurationJson)
-       << "</pre></section></body></html>\n";
+       << "</pre></section>";
+  if (comparer) html << "<script>" << kComparerScript << "</script>";
+  html << "</body></html>\n";
   return html.str();
 }
 

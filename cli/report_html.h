@@ -2,7 +2,8 @@
 // The self-contained HTML report: a document model (sections of side-by-side images, tables and
 // bar charts) rendered to one HTML file with every image embedded as a data: URI and every chart
 // as inline SVG, so it opens anywhere without a network. A small inline script records whether
-// every image decoded (body attribute data-images="loaded/total") for the headless-browser test.
+// every image decoded (body attribute data-images="loaded/total") for the headless-browser test;
+// another drives the image comparer (ReportSection::imageComparer).
 
 #include <cstdint>
 #include <string>
@@ -15,6 +16,9 @@ struct ReportImage {
   std::vector<std::uint8_t> png;  // encoded PNG
   int width = 0, height = 0;      // of the PNG
   int displayScale = 1;           // > 1 shows a zoomed crop with nearest-neighbour pixels
+  // Images of one group show the same pixels ("whole frame", "region 1"): the image comparer
+  // offers every group and every image title in it.
+  std::string group = {};
 };
 
 struct ReportTable {
@@ -39,6 +43,9 @@ struct ReportSection {
   std::vector<ReportImage> images;
   std::vector<ReportTable> tables;
   std::vector<BarChart> charts;
+  // Shows the image comparer: pick two images of a group, flip between them or wipe with a
+  // slider, at 1x-8x nearest-neighbour zoom. It reuses the grouped images of the whole report.
+  bool imageComparer = false;
 };
 
 struct Report {

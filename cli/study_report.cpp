@@ -196,9 +196,12 @@ std::string QualityCsv(const Study& study) {
 
 // ---- report.html -------------------------------------------------------------------------------
 
-ReportImage Embed(const std::string& title, const RgbImage& image, int displayScale = 1) {
-  return {title, EncodePng(image.width, image.height, 3, image.rgb), image.width, image.height, displayScale};
+ReportImage Embed(const std::string& title, const RgbImage& image, int displayScale = 1, std::string group = {}) {
+  return {title, EncodePng(image.width, image.height, 3, image.rgb), image.width, image.height, displayScale,
+          std::move(group)};
 }
+
+constexpr const char* kWholeFrameGroup = "whole frame";
 
 // Every image the report compares, ground truth first, in one list.
 struct Shown {
@@ -257,7 +260,8 @@ ReportSection ImagesSection(const std::vector<Shown>& shown, int width, int heig
                                                  std::to_string(factor) + " pixels; the hardest regions below are "
                                                  "at full resolution.");
   for (const Shown& image : shown) {
-    section.images.push_back(Embed(image.label, Preview(image.colour->Texels(), width, height, factor)));
+    section.images.push_back(
+        Embed(image.label, Preview(image.colour->Texels(), width, height, factor), 1, kWholeFrameGroup));
   }
   return section;
 }
@@ -280,12 +284,23 @@ std::vector<ReportSection> CropSections(const Study& study, const std::vector<Sh
       section.paragraphs.push_back("The windows where " + aliased + " has the largest total FLIP error, shown x" +
                                    std::to_string(zoom) + " with nearest-neighbour pixels.");
     }
+    const std::string group = "region " + std::to_string(sections.size() + 1) + " at " + where;
     for (const Shown& image : shown) {
-      section.images.push_back(Embed(image.label, Crop(image.colour->Texels(), width, rect), zoom));
+      section.images.push_back(Embed(image.label, Crop(image.colour->Texels(), width, rect), zoom, group));
     }
     sections.push_back(std::move(section));
   }
   return sections;
+}
+
+ReportSection ComparerSection() {
+  ReportSection section{"Compare two images", {}, {}, {}, {}};
+  section.paragraphs.push_back(
+      "Pick two images and a region (the whole frame as previewed above, or one of the hard regions below at full "
+      "resolution), then flip between them (button or key f) or wipe across with the slider; pixels are enlarged "
+      "nearest-neighbour. Defaults: the ground truth against the aliased frame on the hardest region.");
+  section.imageComparer = true;
+  return section;
 }
 
 ReportSection QualitySection(const std::vector<Shown>& shown) {
@@ -448,6 +463,59 @@ ReportSection PassSection(const Study& study, const StudyPass& pass) {
   return section;
 }
 
+sim::LaneCounters RunLanes(const Study& study, const StudyPassRun& run) {
+  sim::LaneCounters lanes;
+  for (const study::DispatchRecord& record : RunDispatches(study, run)) lanes.Merge(record.report.lanes);
+  return lanes;
+}
+
+std::uint64_t RunDramBytes(const Study& study, const StudyPassRun& run) {
+  std::uint64_t bytes = 0;
+  for (const study::DispatchRecord& record : RunDispatches(study, run)) bytes += record.report.DramBytes();
+  return bytes;
+}
+
+// Every pass of the run under every strategy in one table: the cost side (every dispatch of the
+// pass summed) next to the quality side (the strategies' images are identical, so once per pass).
+ReportSection PassesComparedSection(const Study& study) {
+  ReportSection section{"Passes compared", {kEstimateNote}, {}, {}, {}};
+  section.paragraphs.push_back(
+      "Per pass and strategy, over every dispatch of the pass: the work set (pixels the pass's detect kept), waves, "
+      "launched lanes split into active, helper and dead (stencil-culled or empty) lanes, DRAM traffic and the "
+      "estimated time, next to the pass's quality against the ground truth (PSNR and SSIM on sRGB values, FLIP on "
+      "linear colour, edge FLIP over the ground truth's edge pixels).");
+  ReportTable table{"Cost and quality per pass and strategy",
+                    {"pass", "strategy", "work set px", "waves", "lanes", "active %", "helper %", "dead %", "DRAM MB",
+                     "estimated µs", "PSNR", "SSIM", "FLIP", "edge FLIP"},
+                    {}};
+  BarChart time{"Estimated time per pass (docs/timing-model.md)", "µs", {}, {}, {}, false};
+  for (const passes::Strategy strategy : passes::kAllStrategies) {
+    time.series.emplace_back(passes::StrategyName(strategy));
+    time.values.emplace_back();
+  }
+  for (const StudyPass& pass : study.passes) {
+    time.categories.push_back(pass.name);
+    for (std::vector<double>& values : time.values) values.push_back(0.0);
+    const passes::QualityScores& q = pass.image.quality.scores;
+    for (const StudyPassRun& run : pass.runs) {
+      const sim::LaneCounters lanes = RunLanes(study, run);
+      const double microseconds = PassMicroseconds(study, run);
+      table.rows.push_back({pass.name, std::string(passes::StrategyName(run.strategy)), std::to_string(pass.workItems),
+                            std::to_string(lanes.waves), std::to_string(lanes.lanesLaunched),
+                            FormatPercent(lanes.lanesActive, lanes.lanesLaunched),
+                            FormatPercent(lanes.lanesHelper, lanes.lanesLaunched),
+                            FormatPercent(lanes.lanesDeadStencil + lanes.lanesDeadEmpty, lanes.lanesLaunched),
+                            FormatFixed(double(RunDramBytes(study, run)) / 1e6, 2), FormatFixed(microseconds, 1),
+                            FormatFixed(q.psnr, 2), FormatFixed(q.ssim, 4), FormatFixed(q.flip, 4),
+                            FormatFixed(q.edgeFlip, 4)});
+      time.values[static_cast<std::size_t>(run.strategy)].back() = microseconds;
+    }
+  }
+  section.tables.push_back(std::move(table));
+  section.charts.push_back(std::move(time));
+  return section;
+}
+
 ReportSection DispatchesSection(const Study& study) {
   ReportSection section{"All dispatches", {kEstimateNote}, {}, {}, {}};
   std::vector<std::vector<std::string>> rows = DispatchSummaryRows(study.dispatches);
@@ -533,11 +601,12 @@ Report StudyHtml(const Study& study, const RunCommandOptions& options) {
   const std::vector<Shown> shown = ShownImages(study, study.groundTruth.colour);
   const int width = options.width, height = options.height;
   Report report{"aasim report: " + study.sceneName, {}, RunConfigurationJson(options, study.threads).dump(2)};
-  report.sections = {RunSection(study, options), ImagesSection(shown, width, height)};
+  report.sections = {RunSection(study, options), ImagesSection(shown, width, height), ComparerSection()};
   for (ReportSection& crop : CropSections(study, shown, width, height)) report.sections.push_back(std::move(crop));
   report.sections.push_back(QualitySection(shown));
   report.sections.push_back(ErrorMapsSection(shown, width, height));
   report.sections.push_back(FramesSection(study));
+  if (!study.passes.empty()) report.sections.push_back(PassesComparedSection(study));
   for (const StudyPass& pass : study.passes) report.sections.push_back(PassSection(study, pass));
   report.sections.push_back(DispatchesSection(study));
   return report;

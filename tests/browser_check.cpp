@@ -183,41 +183,6 @@ std::string DecodeEntities(const std::string& text) {
   return out;
 }
 
-// The value of attribute `name` in the dumped DOM's <body ...> start tag; false when absent.
-bool BodyAttribute(const std::string& dom, const std::string& name, std::string& value) {
-  std::size_t i = dom.find("<body");
-  if (i == std::string::npos) return false;
-  i += 5;
-  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f'; };
-  while (i < dom.size()) {
-    while (i < dom.size() && space(dom[i])) ++i;
-    if (i >= dom.size() || dom[i] == '>' || dom[i] == '/') return false;
-    const std::size_t nameStart = i;
-    while (i < dom.size() && !space(dom[i]) && dom[i] != '=' && dom[i] != '>') ++i;
-    const std::string attribute = dom.substr(nameStart, i - nameStart);
-    std::string raw;
-    if (i < dom.size() && dom[i] == '=') {
-      ++i;
-      if (i < dom.size() && (dom[i] == '"' || dom[i] == '\'')) {
-        const char quote = dom[i++];
-        const std::size_t end = dom.find(quote, i);
-        if (end == std::string::npos) return false;
-        raw = dom.substr(i, end - i);
-        i = end + 1;
-      } else {
-        const std::size_t start = i;
-        while (i < dom.size() && !space(dom[i]) && dom[i] != '>') ++i;
-        raw = dom.substr(start, i - start);
-      }
-    }
-    if (attribute == name) {
-      value = DecodeEntities(raw);
-      return true;
-    }
-  }
-  return false;
-}
-
 std::string LastLines(const std::string& text, int count) {
   std::size_t pos = text.size();
   while (count-- > 0 && pos > 0) {
@@ -290,6 +255,41 @@ bool EndsConsoleMessage(std::string_view text) {
 }
 
 }  // namespace
+
+// The value of attribute `name` in the dumped DOM's <body ...> start tag; false when absent.
+bool BodyAttribute(const std::string& dom, const std::string& name, std::string& value) {
+  std::size_t i = dom.find("<body");
+  if (i == std::string::npos) return false;
+  i += 5;
+  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f'; };
+  while (i < dom.size()) {
+    while (i < dom.size() && space(dom[i])) ++i;
+    if (i >= dom.size() || dom[i] == '>' || dom[i] == '/') return false;
+    const std::size_t nameStart = i;
+    while (i < dom.size() && !space(dom[i]) && dom[i] != '=' && dom[i] != '>') ++i;
+    const std::string attribute = dom.substr(nameStart, i - nameStart);
+    std::string raw;
+    if (i < dom.size() && dom[i] == '=') {
+      ++i;
+      if (i < dom.size() && (dom[i] == '"' || dom[i] == '\'')) {
+        const char quote = dom[i++];
+        const std::size_t end = dom.find(quote, i);
+        if (end == std::string::npos) return false;
+        raw = dom.substr(i, end - i);
+        i = end + 1;
+      } else {
+        const std::size_t start = i;
+        while (i < dom.size() && !space(dom[i]) && dom[i] != '>') ++i;
+        raw = dom.substr(start, i - start);
+      }
+    }
+    if (attribute == name) {
+      value = DecodeEntities(raw);
+      return true;
+    }
+  }
+  return false;
+}
 
 std::vector<std::string> ConsoleMessagesInLog(const std::string& log) {
   std::vector<std::string> messages;
@@ -386,6 +386,7 @@ BrowserCheck CheckInChromium(const fs::path& html, std::chrono::seconds timeout)
     return result;
   }
   result.ran = true;
+  result.dom = dom;
   result.consoleErrors = ConsoleMessagesInLog(result.rawLog);
   std::string value;
   if (BodyAttribute(dom, "data-images", value)) {

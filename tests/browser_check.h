@@ -25,11 +25,15 @@ struct BrowserCheck {
   double seconds = 0.0;                      // wall time of the Chromium run
   std::string commandLine;                   // as run, shell-quoted
   std::string rawLog;                        // Chromium's stderr
+  std::string dom;                           // the DOM Chromium dumped after the page ran
 };
 
 // Chromium is $AASIM_CHROMIUM when set, else /usr/bin/chromium.
 BrowserCheck CheckInChromium(const std::filesystem::path& html,
                              std::chrono::seconds timeout = std::chrono::seconds(60));
+
+// The value of attribute `name` in the dumped DOM's <body ...> start tag; false when absent.
+bool BodyAttribute(const std::string& dom, const std::string& name, std::string& value);
 
 // The page console messages in Chromium's stderr log: lines like
 // `[pid:tid:MMDD/hhmmss.micros:INFO:CONSOLE:12] "text", source: URL (12)` (older builds write

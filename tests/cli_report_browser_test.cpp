@@ -142,5 +142,71 @@ TEST_F(CliReportBrowser, ErrorLoggedAfterLoadIsReported) {
   EXPECT_TRUE(AnyContains(check.consoleErrors, "\"late\"")) << Joined(check.consoleErrors) << "\n" << check.rawLog;
 }
 
+// Two groups of three images with different pixels, and the comparer.
+Report ComparerReport() {
+  Report report;
+  report.title = "comparer";
+  ReportSection images{"images", {}, {}, {}, {}};
+  for (const std::string group : {"whole frame", "region 1"}) {
+    for (const std::string label : {"truth", "aliased", "pass"}) {
+      std::vector<std::uint8_t> pixels(4 * 4 * 3, static_cast<std::uint8_t>(40 * images.images.size()));
+      images.images.push_back({label, EncodePng(4, 4, 3, pixels), 4, 4, group == "region 1" ? 8 : 1, group});
+    }
+  }
+  ReportSection comparer{"compare", {}, {}, {}, {}};
+  comparer.imageComparer = true;
+  report.sections = {images, comparer};
+  return report;
+}
+
+std::string Attribute(const BrowserCheck& check, const std::string& name) {
+  std::string value;
+  EXPECT_TRUE(testing::BodyAttribute(check.dom, name, value)) << name << " missing";
+  return value;
+}
+
+// A script a reader's actions stand in for: after load it records what the viewer shows, uses the
+// comparer's own controls, and records again.
+constexpr const char* kDriveComparer = R"(<script>window.addEventListener('load',function(){
+var view=document.getElementById('cmp-view'),imgs=view.getElementsByTagName('img'),b=document.body;
+function visible(){return imgs[1].style.visibility==='visible'?imgs[1]:imgs[0];}
+b.setAttribute('data-before',view.getAttribute('data-shown'));var src=visible().src;
+b.setAttribute('data-region',document.getElementById('cmp-region').value);
+b.setAttribute('data-zoom',document.getElementById('cmp-zoom').value+' '+imgs[0].width);
+document.getElementById('cmp-flip').click();
+b.setAttribute('data-after',view.getAttribute('data-shown'));
+b.setAttribute('data-src-changed',String(visible().src!==src));
+document.dispatchEvent(new KeyboardEvent('keydown',{key:'f'}));
+b.setAttribute('data-key',view.getAttribute('data-shown'));
+document.querySelector('input[name=cmp-mode][value=wipe]').click();
+var wipe=document.getElementById('cmp-wipe');wipe.value='30';wipe.dispatchEvent(new Event('input'));
+b.setAttribute('data-wipe',view.getAttribute('data-shown')+' / '+imgs[1].style.clipPath);});</script>)";
+
+TEST_F(CliReportBrowser, ComparerFlipsAndWipesBetweenTwoImages) {
+  const BrowserCheck check = Check(WithBeforeBodyEnd(RenderHtml(ComparerReport()), kDriveComparer));
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_TRUE(check.consoleErrors.empty()) << Joined(check.consoleErrors);
+  EXPECT_EQ(check.imagesLoaded, check.imagesTotal) << Joined(check.loadErrors);
+  EXPECT_EQ(check.imagesTotal, 8);  // six in the report, the viewer's two
+  EXPECT_EQ(Attribute(check, "data-region"), "region 1");  // the first region, not the whole frame
+  EXPECT_EQ(Attribute(check, "data-zoom"), "8 32");         // a 4-pixel crop fits 8x
+  EXPECT_EQ(Attribute(check, "data-before"), "truth");
+  EXPECT_EQ(Attribute(check, "data-after"), "aliased");
+  EXPECT_EQ(Attribute(check, "data-src-changed"), "true");
+  EXPECT_EQ(Attribute(check, "data-key"), "truth");
+  EXPECT_EQ(Attribute(check, "data-wipe"), "truth | aliased / inset(0px 0px 0px 30%)");
+}
+
+TEST_F(CliReportBrowser, ComparerWithoutGroupedImagesSaysSo) {
+  Report report = ComparerReport();
+  report.sections.erase(report.sections.begin());
+  const BrowserCheck check = Check(WithBeforeBodyEnd(
+      RenderHtml(report),
+      "<script>document.body.setAttribute('data-cmp',document.getElementById('cmp').textContent)</script>"));
+  ASSERT_TRUE(check.ran) << check.error;
+  EXPECT_TRUE(check.consoleErrors.empty()) << Joined(check.consoleErrors);
+  EXPECT_EQ(Attribute(check, "data-cmp"), "No images to compare.");
+}
+
 }  // namespace
 }  // namespace cli

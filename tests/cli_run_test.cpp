@@ -203,8 +203,36 @@ TEST_F(CliRunTest, ReportLoadsInHeadlessChromiumWithEveryImage) {
   ASSERT_TRUE(check.ran) << check.error;
   EXPECT_TRUE(check.consoleErrors.empty()) << check.consoleErrors.front();
   EXPECT_TRUE(check.loadErrors.empty()) << check.loadErrors.front();
-  EXPECT_EQ(check.imagesTotal, images);
-  EXPECT_EQ(check.imagesLoaded, images);
+  // The image comparer's two layers come on top of the report's figures.
+  EXPECT_EQ(check.imagesTotal, images + 2);
+  EXPECT_EQ(check.imagesLoaded, images + 2);
+}
+
+// The comparer offers the whole frame and every hard region, each with the ground truth, every
+// frame and every pass; the pass table has a row per pass and strategy.
+TEST_F(CliRunTest, ReportComparesEveryImageAndEveryPass) {
+  ASSERT_EQ(run_->exitCode, 0) << run_->err;
+  const std::string html = ReadText(Out() / "report.html");
+  const nlohmann::json report = Report();
+  EXPECT_NE(html.find("id='cmp-view'"), std::string::npos);
+  const std::size_t perGroup = 1 + std::size(kModes) + 2 + 1 + report["passes"].size();
+  auto count = [&](const std::string& text) {
+    std::size_t n = 0;
+    for (std::size_t at = html.find(text); at != std::string::npos; at = html.find(text, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("data-group='whole frame'"), perGroup);
+  EXPECT_EQ(count("data-group='region 1 at ("), perGroup);
+  EXPECT_EQ(count("data-label='smaa on 1S/1Z/1F'") * perGroup, count("data-group='"));  // in every group
+  EXPECT_NE(html.find("<h2>Passes compared</h2>"), std::string::npos);
+  std::size_t runs = 0;
+  for (const nlohmann::json& pass : report["passes"]) runs += pass["strategies"].size();
+  const std::size_t table = html.find("<caption>Cost and quality per pass and strategy</caption>");
+  ASSERT_NE(table, std::string::npos);
+  const std::size_t end = html.find("</table>", table);
+  std::size_t rows = 0;
+  for (std::size_t at = html.find("<tr>", table); at < end; at = html.find("<tr>", at + 1)) ++rows;
+  EXPECT_EQ(rows, 1 + runs);
 }
 
 TEST_F(CliRunTest, SameCountersQualityAndImagesWithOneThread) {
