@@ -10,8 +10,10 @@ endif()
 
 add_library(aasim_opt INTERFACE)
 if(AASIM_SANITIZE)
+  # -g1: line tables are all a sanitizer report's stack trace needs; full debug info only makes
+  # the CI's sanitized build slower to compile and link.
   target_compile_options(aasim_opt INTERFACE -fsanitize=address,undefined -fno-sanitize-recover=all
-                                             -fno-omit-frame-pointer -O1 -g)
+                                             -fno-omit-frame-pointer -O1 -g1)
   target_link_options(aasim_opt INTERFACE -fsanitize=address,undefined)
   # Release flags (NDEBUG) still get the AASIM_DCHECK tier of sim/check.h.
   target_compile_definitions(aasim_opt INTERFACE AASIM_DCHECKS)
@@ -34,7 +36,7 @@ if(AASIM_FUZZ)
   endif()
   # Libraries get coverage instrumentation without libFuzzer's main; fuzz/ links the main.
   target_compile_options(aasim_opt INTERFACE -fsanitize=fuzzer-no-link,address,undefined
-                                             -fno-sanitize-recover=all -fno-omit-frame-pointer -O1 -g)
+                                             -fno-sanitize-recover=all -fno-omit-frame-pointer -O1 -g1)
   target_link_options(aasim_opt INTERFACE -fsanitize=address,undefined)
   target_compile_definitions(aasim_opt INTERFACE AASIM_DCHECKS)
 endif()
