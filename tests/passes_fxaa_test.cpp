@@ -348,5 +348,59 @@ TEST(FxaaWorstCase, ACheckerboardPutsEveryPixelInTheWorkSetAndLosesNone) {
   }
 }
 
+// ---- Against the original shader ----
+
+// A staircase of 5-pixel steps, grey 40 below / 200 above the edge (30x12): the codes FXAA changed,
+// as the FXAA_PC path of Fxaa3_11.h computed them on Mesa llvmpipe (GL 4.5 core, FXAA_GLSL_130,
+// FXAA_GATHER4_ALPHA 0, the header's luma pre-pass example into an RGBA8 texture; docs/fxaa.md
+// "Against the original"). Every other pixel keeps its code. Presets 12 (dithered steps: the
+// half-pixel samples read 8-bit lerps) and 39 (unit steps first) end the searches at different
+// samples, so the blends along each step differ.
+struct ChangedCode {
+  int x, y, code;
+};
+TEST(FxaaReference, AStaircaseGivesTheOriginalShadersCodesOnLlvmpipe) {
+  const Codes stairs = [](int x, int y) { return y >= 3 + x / 5 ? 200 : 40; };
+  const sim::Texture2D<glm::vec4> image = GreyImage(30, 12, stairs);
+  const std::vector<std::pair<int, std::vector<ChangedCode>>> reference{
+      {12, {
+      {0, 2, 48}, {1, 2, 48}, {2, 2, 48}, {3, 2, 48}, {4, 2, 43}, {0, 3, 149}, {1, 3, 149}, {2, 3, 138},
+      {3, 3, 138}, {4, 3, 128}, {5, 3, 91}, {6, 3, 63}, {7, 3, 48}, {8, 3, 48}, {9, 3, 43}, {5, 4, 197},
+      {6, 4, 192}, {7, 4, 177}, {8, 4, 177}, {9, 4, 137}, {10, 4, 91}, {11, 4, 63}, {12, 4, 48}, {13, 4, 48},
+      {14, 4, 43}, {10, 5, 197}, {11, 5, 192}, {12, 5, 177}, {13, 5, 177}, {14, 5, 137}, {15, 5, 91},
+      {16, 5, 63}, {17, 5, 48}, {18, 5, 48}, {19, 5, 43}, {15, 6, 197}, {16, 6, 192}, {17, 6, 177},
+      {18, 6, 177}, {19, 6, 137}, {20, 6, 91}, {21, 6, 63}, {22, 6, 48}, {23, 6, 48}, {24, 6, 43},
+      {20, 7, 197}, {21, 7, 192}, {22, 7, 177}, {23, 7, 177}, {24, 7, 137}, {25, 7, 113}, {26, 7, 103},
+      {27, 7, 91}, {28, 7, 91}, {29, 7, 73}, {25, 8, 197}, {26, 8, 192}, {27, 8, 192}, {28, 8, 192},
+      {29, 8, 192}}},
+      {39, {
+      {0, 2, 48}, {1, 2, 48}, {2, 2, 48}, {3, 2, 48}, {4, 2, 43}, {0, 3, 146}, {1, 3, 141}, {2, 3, 136},
+      {3, 3, 131}, {4, 3, 126}, {5, 3, 93}, {6, 3, 67}, {7, 3, 48}, {8, 3, 48}, {9, 3, 43}, {5, 4, 197},
+      {6, 4, 192}, {7, 4, 192}, {8, 4, 173}, {9, 4, 147}, {10, 4, 93}, {11, 4, 67}, {12, 4, 48}, {13, 4, 48},
+      {14, 4, 43}, {10, 5, 197}, {11, 5, 192}, {12, 5, 192}, {13, 5, 173}, {14, 5, 147}, {15, 5, 93},
+      {16, 5, 67}, {17, 5, 48}, {18, 5, 48}, {19, 5, 43}, {15, 6, 197}, {16, 6, 192}, {17, 6, 192},
+      {18, 6, 173}, {19, 6, 147}, {20, 6, 93}, {21, 6, 67}, {22, 6, 48}, {23, 6, 48}, {24, 6, 43},
+      {20, 7, 197}, {21, 7, 192}, {22, 7, 192}, {23, 7, 173}, {24, 7, 147}, {25, 7, 114}, {26, 7, 109},
+      {27, 7, 104}, {28, 7, 99}, {29, 7, 94}, {25, 8, 197}, {26, 8, 192}, {27, 8, 192}, {28, 8, 192},
+      {29, 8, 192}}},
+  };
+  for (const auto& [preset, changed] : reference) {
+    const FxaaRun run = RunFxaa(image, "fxaa:preset=" + std::to_string(preset));
+    std::vector<int> expected(30 * 12);
+    for (int y = 0; y < 12; ++y) {
+      for (int x = 0; x < 30; ++x) expected[static_cast<std::size_t>(y * 30 + x)] = stairs(x, y);
+    }
+    for (const ChangedCode& c : changed) expected[static_cast<std::size_t>(c.y * 30 + c.x)] = c.code;
+    for (int y = 0; y < 12; ++y) {
+      for (int x = 0; x < 30; ++x) {
+        for (int channel = 0; channel < 3; ++channel) {
+          ASSERT_EQ(run.Code(x, y, channel), expected[static_cast<std::size_t>(y * 30 + x)])
+              << "preset " << preset << " at " << x << ", " << y;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace passes
