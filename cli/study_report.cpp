@@ -151,6 +151,14 @@ nlohmann::ordered_json FrameJson(const StudyFrame& frame, const RunCommandOption
           {"fragment_counters", FragmentCountersJson(frame.fragments)}};
 }
 
+nlohmann::ordered_json VariantJson(const std::optional<study::VariantDifference>& variant) {
+  if (!variant) return nullptr;
+  return {{"pass", variant->baseline},
+          {"differing_pixels", variant->pixels},
+          {"max_code_difference", variant->maxCodes},
+          {"psnr_db", Number(variant->psnr)}};
+}
+
 nlohmann::ordered_json PassJson(const Study& study, const StudyPass& pass) {
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
   for (const StudyPassRun& run : pass.runs) {
@@ -170,6 +178,7 @@ nlohmann::ordered_json PassJson(const Study& study, const StudyPass& pass) {
           {"difference", pass.difference.Identical() ? nlohmann::ordered_json(nullptr)
                                                      : nlohmann::ordered_json(pass.difference.Describe())},
           {"quality", QualityJson(pass.image.quality.scores)},
+          {"variant_of", VariantJson(pass.variant)},
           {"strategies", runs}};
 }
 
@@ -431,6 +440,15 @@ std::string ScatterParagraph(const passes::WorkSetShape& shape) {
          "per wave.";
 }
 
+std::string VariantParagraph(const StudyPass& pass, const study::VariantDifference& variant) {
+  const std::uint64_t pixels = std::uint64_t(pass.image.colour.Width()) * std::uint64_t(pass.image.colour.Height());
+  if (variant.pixels == 0) return "Against " + variant.baseline + " on the same frame: the same 8-bit image.";
+  return "Against " + variant.baseline + " on the same frame: " + std::to_string(variant.pixels) + " pixels (" +
+         FormatPercent(variant.pixels, pixels) + "%) differ in their 8-bit sRGB codes, by up to " +
+         std::to_string(variant.maxCodes) + " codes; PSNR between the two images " + FormatFixed(variant.psnr, 2) +
+         " dB.";
+}
+
 ReportSection PassSection(const Study& study, const StudyPass& pass) {
   ReportSection section{"Dispatch strategies: " + pass.name, {}, {}, {}, {}};
   section.paragraphs.push_back(
@@ -439,6 +457,7 @@ ReportSection PassSection(const Study& study, const StudyPass& pass) {
       "stencil (quads run when any pixel passes, 16 quads per wave). Queue: the work-set pixels appended to a "
       "buffer, then an indirect compute dispatch over exactly that many items.");
   section.paragraphs.push_back(ScatterParagraph(pass.workSet));
+  if (pass.variant) section.paragraphs.push_back(VariantParagraph(pass, *pass.variant));
   section.paragraphs.push_back(pass.difference.Identical()
                                    ? "The strategies' outputs and layers are bit-identical."
                                    : "The strategies' outputs DIFFER: " + pass.difference.Describe() + ". A bug.");

@@ -132,6 +132,9 @@ struct PassInfo {
   // The coverage samples of the EQAA surface the pass reads (S2x: 2); 0 when it reads none. The
   // study runs such a pass on the first of its frames with that many samples.
   int eqaaSamples = 0;
+  // The registered pass this one varies (the same technique with other maths, inputs or
+  // thresholds): when both run on the same frame, the report measures how far their images differ.
+  std::string_view variantOf = {};
 };
 
 class Pass {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <ostream>
 #include <stdexcept>
@@ -13,6 +14,8 @@
 
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/parallel_for.h>
+
+#include "sim/formats.h"
 
 namespace study {
 namespace {
@@ -207,6 +210,11 @@ class StudyRunner {
     result.image.colour = std::move(first->colour);
     result.image.quality =
         Step(observer_, "metrics " + name, [&] { return ScoreAgainstGroundTruth(result.image.colour, study_.groundTruth); });
+    for (const StudyPass& earlier : study_.passes) {
+      if (earlier.name == info.variantOf && earlier.inputFrame == frameLabel) {
+        result.variant = CompareVariant(earlier.name, result.image.colour, earlier.image.colour);
+      }
+    }
     study_.passes.push_back(std::move(result));
   }
 
@@ -229,6 +237,22 @@ class StudyRunner {
 };
 
 }  // namespace
+
+VariantDifference CompareVariant(std::string baseline, const sim::Texture2D<glm::vec4>& image,
+                                 const sim::Texture2D<glm::vec4>& baselineImage) {
+  VariantDifference difference{std::move(baseline), 0, 0,
+                               passes::Psnr(passes::ViewOf(image), passes::ViewOf(baselineImage))};
+  const std::span<const glm::vec4> a = image.Texels(), b = baselineImage.Texels();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    int largest = 0;
+    for (int c = 0; c < 3; ++c) {
+      largest = std::max(largest, std::abs(int(sim::FloatToSrgb8(a[i][c])) - int(sim::FloatToSrgb8(b[i][c]))));
+    }
+    difference.pixels += largest > 0 ? 1 : 0;
+    difference.maxCodes = std::max(difference.maxCodes, largest);
+  }
+  return difference;
+}
 
 std::optional<std::size_t> PassFrame(const ExperimentConfig& config, const passes::PassInfo& pass) {
   if (pass.eqaaSamples == 0) return config.modes.empty() ? std::nullopt : std::optional<std::size_t>(0);

@@ -57,6 +57,17 @@ struct StudyPassRun {
   std::vector<passes::PassLayer> layers;
 };
 
+// How far a pass's image is from that of the pass it varies (PassInfo::variantOf), on the same
+// frame: both as the 8-bit sRGB codes an sRGB target would hold.
+struct VariantDifference {
+  std::string baseline;      // "smaa"
+  std::uint64_t pixels = 0;  // pixels whose codes differ in any of R, G, B
+  int maxCodes = 0;          // the largest difference of one channel, in codes
+  double psnr = 0.0;         // dB between the images (passes::Psnr); +infinity when identical
+};
+VariantDifference CompareVariant(std::string baseline, const sim::Texture2D<glm::vec4>& image,
+                                 const sim::Texture2D<glm::vec4>& baselineImage);
+
 struct StudyPass {
   std::string name;
   std::string description;
@@ -69,6 +80,7 @@ struct StudyPass {
   std::vector<StudyPassRun> runs{};
   // The first difference of a later strategy's output from the first's (passes/compare.h).
   passes::StrategyDifference difference{};
+  std::optional<VariantDifference> variant{};  // when the pass it varies ran on the same frame
 };
 
 struct StudyGroundTruth {

@@ -226,6 +226,7 @@ const PassInfo& Info() {
       // the items layer, membership and shape bytes, the stencil byte and two full-size queues.
       .bytesPerPixel = 3 * sizeof(glm::vec4) + sizeof(glm::vec2) + 3 * sizeof(float) + 3 + 2 * sizeof(std::uint32_t),
       .temporal = false,
+      .variantOf = "smaa",
   };
   return info;
 }

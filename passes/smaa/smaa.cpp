@@ -124,6 +124,7 @@ PassInfo MakeInfo(Variant variant) {
       .bytesPerPixel = variant == Variant::S2x ? 2 * kBytesPerPixel + 2 * sizeof(glm::vec4) : kBytesPerPixel,
       .temporal = false,
       .eqaaSamples = variant == Variant::S2x ? 2 : 0,
+      .variantOf = variant == Variant::Luma ? "" : "smaa",
   };
 }
 
