@@ -166,6 +166,16 @@ TEST(FxaaMiniEngineGolden, AStepEdgeBlendsByTheDistanceToItsNearerEnd) {
   }
 }
 
+// FXAA_EXTREME_QUALITY's table samples 2 px (row 7, outside: an end) where the default's first
+// step past 1 is 2.5, and gives up at 36.5: row 9 blends by 0.5 - 2 / 38.5.
+TEST(FxaaMiniEngineGolden, TheExtremeTableFindsTheEndAtTwoPixels) {
+  for (const Strategy strategy : kAllStrategies) {
+    const PassOutput out = RunFxaa(VerticalSegment(), strategy, "fxaa-miniengine:extreme_quality=1").output;
+    EXPECT_EQ(Red(out, 20, 9), Stored(1.0f + (0.5f - 2.0f / 38.5f) * (0.0f - 1.0f))) << StrategyName(strategy);
+    EXPECT_EQ(Red(out, 20, 16), Stored(1.0f + (0.5f - 10.5f / 47.0f) * (0.0f - 1.0f))) << StrategyName(strategy);
+  }
+}
+
 TEST(FxaaMiniEngineGolden, TheTransposedEdgeGivesTheTransposedImage) {
   for (const Strategy strategy : kAllStrategies) {
     const PassOutput out = RunFxaa(VerticalSegment(), strategy).output;
