@@ -108,6 +108,9 @@ struct PassOutput {
   // consume dispatch's active lanes, under the stencil strategy its stencil-passing pixels.
   std::uint64_t workItems = 0;
   WorkSetShape workSet;  // workSet.pixels == workItems
+  // Dummy items the queue strategy's consumes ran besides the work items, padding each queue to
+  // whole waves (MiniEngine FXAA, aa-facts §3): active lanes that store nothing. 0 otherwise.
+  std::uint64_t paddingItems = 0;
 
   void SetWorkSet(const WorkSetShape& shape) {
     workSet = shape;

@@ -6,6 +6,7 @@
 #include "passes/demo/demo.h"
 #include "passes/filmic_smaa/filmic_smaa.h"
 #include "passes/fxaa/fxaa.h"
+#include "passes/fxaa_miniengine/fxaa_miniengine.h"
 #include "passes/smaa/smaa.h"
 
 namespace passes {
@@ -21,6 +22,7 @@ std::span<const RegisteredPass> AllPasses() {
       {smaa::Info<smaa::Variant::S2x>, smaa::Make<smaa::Variant::S2x>},
       {filmic_smaa::Info, filmic_smaa::Make},
       {fxaa::Info, fxaa::Make},
+      {fxaa_miniengine::Info, fxaa_miniengine::Make},
   };
   return kPasses;
 }

@@ -83,8 +83,12 @@ class Dispatch {
   // "pass_counters"; the same name twice is the same counter.
   CounterView Counter(const std::string& name);
 
-  // Compute dispatches over an image: thread (x, y) is pixel (x, y) in the heat map.
-  void SetPixelGrid(int width, int height) { pixelGrid_ = {width, height}; }
+  // Compute dispatches over an image: thread (x, y) is pixel origin + (x, y) in the heat map (a
+  // dispatch over a part of the screen, as MiniEngine FXAA's quadrants, aa-facts §3, passes one).
+  void SetPixelGrid(int width, int height, glm::ivec2 origin = {0, 0}) {
+    pixelGrid_ = {width, height};
+    pixelOrigin_ = origin;
+  }
   // Runs the chunks (bins, or runs of compute groups) one after another in chunk order instead of
   // in parallel, so atomics that return a value (RwBufferView::Interlocked*, slot indices) are
   // deterministic: slower, for order-dependent kernels such as CMAA2's per-quad linked lists
@@ -123,6 +127,7 @@ class Dispatch {
   std::vector<SlotStoreTarget> slotStores_;
   std::vector<std::string> passCounters_;
   std::optional<glm::ivec2> pixelGrid_;
+  glm::ivec2 pixelOrigin_{0, 0};
   bool serialChunks_ = false;
 };
 
@@ -193,6 +198,11 @@ struct IndirectCall {
   // (one fetch, counted as the kernel's own load would be), sets lane.pixel and attributes the
   // lane to that pixel in the heat map. Needs Dispatch::SetPixelGrid for the heat map's size.
   std::optional<BufferView<std::uint32_t>> pixelItems = std::nullopt;
+  // A pass-defined item encoding (MiniEngine FXAA's Y << 20 | X << 8 | bits, aa-facts §3) instead
+  // of PackPixelItem: its pixel, also set as lane.pixel; the raw item is lane.item either way.
+  glm::ivec2 (*unpackItem)(std::uint32_t item) = nullptr;
+  // Thread i loads item Size() - 1 - i: a queue filled from the back (aa-facts §3, vertical items).
+  bool itemsFromBack = false;
 };
 
 class Machine {
@@ -233,6 +243,8 @@ class Machine {
     int argumentSlot = -1;   // binding of the indirect arguments, read by the command processor
     std::size_t argumentByte = 0;
     const BufferView<std::uint32_t>* pixelItems = nullptr;
+    glm::ivec2 (*unpackItem)(std::uint32_t item) = nullptr;
+    bool itemsFromBack = false;
   };
   struct IndirectLaunch {
     glm::ivec3 groups{0};

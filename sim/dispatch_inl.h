@@ -219,6 +219,8 @@ DispatchReport Machine::ComputeIndirect(Dispatch& dispatch, const IndirectCall& 
   report.kind = DispatchKind::IndirectCompute;
   IndirectLaunch launch = ReadIndirectArguments(dispatch, call);
   if (call.pixelItems) launch.limits.pixelItems = &*call.pixelItems;
+  launch.limits.unpackItem = call.unpackItem;
+  launch.limits.itemsFromBack = call.itemsFromBack;
   RunGroups(dispatch, std::move(report), launch.groups * call.groupSize, call.groupSize, launch.limits, stages...);
   reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
   return reports_.back();
@@ -268,9 +270,11 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
                                                        (lane.threadId.y + static_cast<long long>(launched.y) * lane.threadId.z);
         const bool inGrid = glm::all(glm::lessThan(lane.threadId, threads));
         live[static_cast<std::size_t>(i)] = inGrid && (!limits.itemCount || linear < *limits.itemCount);
-        lane.pixel = dispatch.pixelGrid_ ? glm::ivec2(lane.threadId) : glm::ivec2(-1);
+        lane.pixel = dispatch.pixelGrid_ ? glm::ivec2(lane.threadId) + dispatch.pixelOrigin_ : glm::ivec2(-1);
         if (limits.pixelItems != nullptr && live[static_cast<std::size_t>(i)]) {
-          lane.pixel = UnpackPixelItem(limits.pixelItems->Load(lane, static_cast<std::size_t>(linear)));
+          const auto at = static_cast<std::size_t>(linear);
+          lane.item = limits.pixelItems->Load(lane, limits.itemsFromBack ? limits.pixelItems->Size() - 1 - at : at);
+          lane.pixel = limits.unpackItem != nullptr ? limits.unpackItem(lane.item) : UnpackPixelItem(lane.item);
         }
         attribution[static_cast<std::size_t>(i)] = live[static_cast<std::size_t>(i)] ? lane.pixel : glm::ivec2(-1);
         if (live[static_cast<std::size_t>(i)]) {

@@ -201,6 +201,8 @@ struct ComputeLane : LaneBase {
   // The pixel this thread works on, also its heat-map pixel: threadId.xy in a dispatch over a
   // pixel grid, the queued item's pixel in an indirect dispatch over pixel items, else (-1, -1).
   glm::ivec2 pixel{-1};
+  // The queued item an indirect dispatch over pixel items loaded for this thread (IndirectCall).
+  std::uint32_t item = 0;
 
   // Group shared memory, indexed in elements of T; bounds-checked against the kernel's declared
   // LDS size.
