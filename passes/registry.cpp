@@ -5,6 +5,7 @@
 #include "passes/copy/copy.h"
 #include "passes/demo/demo.h"
 #include "passes/filmic_smaa/filmic_smaa.h"
+#include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
 
 namespace passes {
@@ -19,6 +20,7 @@ std::span<const RegisteredPass> AllPasses() {
       {smaa::Info<smaa::Variant::LumaPredicated>, smaa::Make<smaa::Variant::LumaPredicated>},
       {smaa::Info<smaa::Variant::S2x>, smaa::Make<smaa::Variant::S2x>},
       {filmic_smaa::Info, filmic_smaa::Make},
+      {mlaa::Info, mlaa::Make},
   };
   return kPasses;
 }
