@@ -295,6 +295,38 @@ TEST(MlaaSymmetry, MirroringTheImageMirrorsTheResultBitForBit) {
   }
 }
 
+// A vertical line between grey (100, 100, 100) on the left and, on the right, (160, 100, 100)
+// above row 8 (the channel sum rises by 60) and (130, 70, 100) from row 8 (the sum does not
+// change): a flat gradient is a class of its own, so the line splits at row 8 in the image and
+// in its mirror (a two-class rule would give the mirrored rows one class and not split).
+glm::ivec3 FlatSplitCodes(int x, int y) {
+  if (x < 4) return {100, 100, 100};
+  return y < 8 ? glm::ivec3(160, 100, 100) : glm::ivec3(130, 70, 100);
+}
+
+sim::Texture2D<glm::vec4> ColourImage(int width, int height, const std::function<glm::ivec3(int, int)>& codes) {
+  sim::Texture2D<glm::vec4> image("input", width, height, 16);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const glm::ivec3 c = codes(x, y);
+      image.At(x, y) = {sim::Srgb8ToFloat(static_cast<std::uint8_t>(c.r)), sim::Srgb8ToFloat(static_cast<std::uint8_t>(c.g)),
+                        sim::Srgb8ToFloat(static_cast<std::uint8_t>(c.b)), 1.0f};
+    }
+  }
+  return image;
+}
+
+TEST(MlaaSymmetry, AFlatGradientIsAClassOfItsOwnSoAMirroredLineSplitsAlike) {
+  const auto image = ColourImage(8, 16, FlatSplitCodes);
+  const auto mirrored = ColourImage(8, 16, [](int x, int y) { return FlatSplitCodes(7 - x, y); });
+  const MlaaRun run = RunMlaa("mlaa", image);
+  // Two L's of 8 turning right at row 8 (the 160|130 edge in column 4): column 4 takes 7/16 of
+  // the grey at rows 7 and 8.
+  EXPECT_EQ(run.At("weights-v", 4, 7, 0), 7.0f / 16.0f);
+  EXPECT_EQ(run.At("weights-v", 4, 8, 0), 7.0f / 16.0f);
+  ExpectMirrored(run, RunMlaa("mlaa", mirrored), 8, 16, [](int x, int y) { return std::pair{7 - x, y}; }, true, false);
+}
+
 TEST(MlaaSymmetry, TransposingAnImageOfOneLineDirectionTransposesTheResult) {
   // The horizontal pass runs first, so a transposed image is a transposed result only where one
   // pass does all the work: the feature-splitting image, whose vertical line has no turning end.
