@@ -192,6 +192,17 @@ TEST(MlaaFeatureSplitting, ALineIsSplitWhereTheGradientChangesSign) {
   }
 }
 
+TEST(MlaaBlend, LinearBlendMixesDecodedValuesInsteadOfTheGammaCodes) {
+  const auto image = GreyImage(16, 8, SplitCode);
+  const MlaaRun run = RunMlaa("mlaa:linear_blend=1", image);
+  const auto linear = [](int code) { return sim::Srgb8ToFloat(static_cast<std::uint8_t>(code)); };
+  // (7, 4) takes 7/16 of the grey above it, mixed as linear light and encoded once.
+  const float mixed = linear(kSplitB) + 7.0f / 16.0f * (linear(kSplitA) - linear(kSplitB));
+  EXPECT_EQ(run.Code(7, 4), sim::FloatToSrgb8(mixed));
+  EXPECT_NE(run.Code(7, 4), 169);  // the gamma-code blend
+  EXPECT_EQ(run.At("weights-h", 7, 4, 0), 7.0f / 16.0f);
+}
+
 // ---- L, Z and U shapes (Reshetov 2009; aa-facts §7) ----
 
 TEST(MlaaShapes, AnLBlendsTheHalfNearItsTurningEnd) {

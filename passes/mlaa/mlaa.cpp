@@ -71,7 +71,8 @@ Config ConfigOf(const PassSettings& settings) {
           .predicationScale = get("predication_scale"),
           .predicationStrength = get("predication_strength"),
           .maxSearch = static_cast<int>(settings.Get("max_search")),
-          .featureSplitting = settings.Get("feature_splitting") != 0.0};
+          .featureSplitting = settings.Get("feature_splitting") != 0.0,
+          .linearBlend = settings.Get("linear_blend") != 0.0};
 }
 
 // One line through a pixel, as the blend traces it: pixels to each end and the end heights.
@@ -221,8 +222,11 @@ class MlaaPass final : public Pass {
     };
     auto makeBlend = [&](sim::Dispatch& d) {
       const LineTracer tracer(config, axis, d.Read(targets.edges), d.Counter("trace_steps"));
-      const sim::TextureView<glm::vec4> in = d.Read(targets.in).As(sim::Format::RGBA8Unorm);
-      const sim::RwTextureView<glm::vec4> out = d.ReadWrite(targets.out).As(sim::Format::RGBA8Unorm);
+      // The PS3 blended the frame buffer's gamma codes; linear_blend reads and writes through
+      // sRGB views instead, as SMAA's neighbourhood blending does (aa-facts §1.9).
+      const sim::Format view = config.linearBlend ? sim::Format::RGBA8Srgb : sim::Format::RGBA8Unorm;
+      const sim::TextureView<glm::vec4> in = d.Read(targets.in).As(view);
+      const sim::RwTextureView<glm::vec4> out = d.ReadWrite(targets.out).As(view);
       const sim::RwTextureView<glm::vec2> weights = d.ReadWrite(targets.weights);
       return [=](const sim::LaneBase& lane, int x, int y) {
         const int u = axis.vertical ? y : x, v = axis.vertical ? x : y;
@@ -282,6 +286,8 @@ std::vector<SettingInfo> Settings() {
        .doc = "pixels traced along a line on each side of a pixel (SMAA HIGH's 16 steps x 2 px)"},
       {.name = "feature_splitting", .defaultValue = 1, .min = 0, .max = 1, .integer = true,
        .doc = "1: split lines where the gradient of the channel sum changes sign (seed 004)"},
+      {.name = "linear_blend", .defaultValue = 0, .min = 0, .max = 1, .integer = true,
+       .doc = "0: blend the 8-bit gamma codes as the PS3's SPUs did; 1: blend linear values through sRGB views"},
   };
 }
 

@@ -27,6 +27,7 @@ struct Config {
   float predicationStrength = 0.75f;   // and at depth edges x scale x (1 - strength)
   int maxSearch = 32;                  // pixels traced along a line on each side of a pixel
   bool featureSplitting = true;
+  bool linearBlend = false;            // blend decoded linear values instead of the gamma codes
 };
 
 inline float MaxChannel(const glm::vec3& c) { return std::max(std::max(c.r, c.g), c.b); }
