@@ -7,6 +7,7 @@
 #include "passes/filmic_smaa/filmic_smaa.h"
 #include "passes/fxaa/fxaa.h"
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
+#include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
 
 namespace passes {
@@ -23,6 +24,7 @@ std::span<const RegisteredPass> AllPasses() {
       {filmic_smaa::Info, filmic_smaa::Make},
       {fxaa::Info, fxaa::Make},
       {fxaa_miniengine::Info, fxaa_miniengine::Make},
+      {mlaa::Info, mlaa::Make},
   };
   return kPasses;
 }
