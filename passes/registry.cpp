@@ -24,7 +24,9 @@ std::span<const RegisteredPass> AllPasses() {
       {filmic_smaa::Info, filmic_smaa::Make},
       {fxaa::Info, fxaa::Make},
       {fxaa_miniengine::Info, fxaa_miniengine::Make},
-      {mlaa::Info, mlaa::Make},
+      {mlaa::Info<mlaa::Thresholding::Relative>, mlaa::Make<mlaa::Thresholding::Relative>},
+      {mlaa::Info<mlaa::Thresholding::Absolute>, mlaa::Make<mlaa::Thresholding::Absolute>},
+      {mlaa::Info<mlaa::Thresholding::Predicated>, mlaa::Make<mlaa::Thresholding::Predicated>},
   };
   return kPasses;
 }

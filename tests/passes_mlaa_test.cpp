@@ -140,26 +140,26 @@ float VerticalStepEdge(std::string_view spec, int left, int right, const sim::Te
 TEST(MlaaEdges, RelativeThresholdingFindsADarkEdgeThatAbsoluteMisses) {
   // Codes 10 and 25: difference 15/255 = 0.059; absolute 0.1 misses it; relative T =
   // max(0.04, 0.2 x 25/255 = 0.020) = 0.04 finds it.
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=absolute", 10, 25), 0.0f);
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=relative", 10, 25), 1.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa-absolute", 10, 25), 0.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa", 10, 25), 1.0f);
   // ... and misses a bright one absolute finds ("inverted sensitivity"): 200 and 235 differ by
   // 0.137 > 0.1, but T = min(0.2 x 200/255, 0.2 x 235/255) = 0.157.
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=absolute", 200, 235), 1.0f);
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=relative", 200, 235), 0.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa-absolute", 200, 235), 1.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa", 200, 235), 0.0f);
 }
 
 TEST(MlaaEdges, PredicationFindsAnEdgeThatOnlyTheDepthShows) {
   // Codes 100 and 115: difference 0.059 < relative T = 0.2 x 100/255 = 0.078.
   const auto step = DepthImage(16, 4, [](int x, int) { return x < 8 ? 0.5f : 0.6f; });
   const auto flat = DepthImage(16, 4, [](int, int) { return 0.5f; });
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=relative", 100, 115, &step), 0.0f);
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=predicated", 100, 115, &flat), 0.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa", 100, 115, &step), 0.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa-predicated", 100, 115, &flat), 0.0f);
   // At the depth step the threshold is 0.078 x 2 x 0.25 = 0.039.
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=predicated", 100, 115, &step), 1.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa-predicated", 100, 115, &step), 1.0f);
   // Away from depth edges predication is less sensitive: 100 and 130 (0.118) is a relative
   // edge but not a predicated one (0.157).
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=relative", 100, 130, &flat), 1.0f);
-  EXPECT_EQ(VerticalStepEdge("mlaa:preset=predicated", 100, 130, &flat), 0.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa", 100, 130, &flat), 1.0f);
+  EXPECT_EQ(VerticalStepEdge("mlaa-predicated", 100, 130, &flat), 0.0f);
 }
 
 // ---- Feature splitting (seed 004 "Color Gradients") ----
@@ -295,7 +295,7 @@ TEST(MlaaSymmetry, MirroringTheImageMirrorsTheResultBitForBit) {
   const auto image = GreyImage(kW, kH, Blocks);
   const auto flippedX = GreyImage(kW, kH, [](int x, int y) { return Blocks(kW - 1 - x, y); });
   const auto flippedY = GreyImage(kW, kH, [](int x, int y) { return Blocks(x, kH - 1 - y); });
-  for (const char* spec : {"mlaa:preset=absolute", "mlaa:preset=relative", "mlaa:feature_splitting=0"}) {
+  for (const char* spec : {"mlaa-absolute", "mlaa", "mlaa:feature_splitting=0"}) {
     SCOPED_TRACE(spec);
     const MlaaRun run = RunMlaa(spec, image);
     EXPECT_GT(run.output.workItems, 100u);
@@ -365,7 +365,7 @@ TEST(MlaaWorstCase, ACheckerboardPutsEveryPixelInBothWorkSetsAndBlendsNothing) {
   constexpr int kW = 24, kH = 18;
   const Codes code = [](int x, int y) { return (x + y) % 2 == 0 ? 0 : 255; };
   const auto image = GreyImage(kW, kH, code);
-  for (const char* spec : {"mlaa", "mlaa:feature_splitting=0", "mlaa:preset=absolute"}) {
+  for (const char* spec : {"mlaa", "mlaa:feature_splitting=0", "mlaa-absolute"}) {
     for (const Strategy strategy : kAllStrategies) {
       const MlaaRun run = RunMlaa(spec, image, strategy);
       EXPECT_EQ(run.output.workItems, 2u * kW * kH) << spec;
@@ -379,7 +379,7 @@ TEST(MlaaWorstCase, ACheckerboardPutsEveryPixelInBothWorkSetsAndBlendsNothing) {
 TEST(MlaaStrategies, EveryPresetGivesBitIdenticalOutputsUnderBothStrategies) {
   const auto image = GreyImage(29, 23, Blocks);
   const auto depth = DepthImage(29, 23, [](int x, int y) { return x + y < 25 ? 0.3f : 0.6f; });
-  for (const char* spec : {"mlaa:preset=absolute", "mlaa:preset=relative", "mlaa:preset=predicated"}) {
+  for (const char* spec : {"mlaa-absolute", "mlaa", "mlaa-predicated"}) {
     const MlaaRun stencil = RunMlaa(spec, image, Strategy::StencilCulled, &depth);
     const MlaaRun queue = RunMlaa(spec, image, Strategy::DeferredQueue, &depth);
     EXPECT_GT(queue.output.workItems, 0u) << spec;

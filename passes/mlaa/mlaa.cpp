@@ -60,19 +60,27 @@ constexpr WorkSetKernels KernelsOf(const AxisNames& names) {
           .detectCompute = kDetectCompute, .consume = kBlend};
 }
 
-Config ConfigOf(const PassSettings& settings) {
-  const auto get = [&](std::string_view key) { return static_cast<float>(settings.Get(key)); };
-  return {.thresholding = static_cast<Thresholding>(static_cast<int>(settings.Get("thresholding"))),
-          .threshold = get("threshold"),
-          .scale = get("scale"),
-          .lowerBound = get("lower_bound"),
-          .predicationLowerBound = get("predication_lower_bound"),
-          .predicationRelative = get("predication_relative"),
-          .predicationScale = get("predication_scale"),
-          .predicationStrength = get("predication_strength"),
-          .maxSearch = static_cast<int>(settings.Get("max_search")),
-          .featureSplitting = settings.Get("feature_splitting") != 0.0,
-          .linearBlend = settings.Get("linear_blend") != 0.0};
+// A variant reads only the settings it declares (SettingsOf); the others keep Config's values.
+Config ConfigOf(Thresholding thresholding, const PassSettings& settings) {
+  Config config{.thresholding = thresholding};
+  const auto has = [&](std::string_view key) {
+    return std::any_of(settings.Schema().begin(), settings.Schema().end(),
+                       [&](const SettingInfo& info) { return info.name == key; });
+  };
+  const auto read = [&](std::string_view key, float& value) {
+    if (has(key)) value = static_cast<float>(settings.Get(key));
+  };
+  read("threshold", config.threshold);
+  read("scale", config.scale);
+  read("lower_bound", config.lowerBound);
+  read("predication_lower_bound", config.predicationLowerBound);
+  read("predication_relative", config.predicationRelative);
+  read("predication_scale", config.predicationScale);
+  read("predication_strength", config.predicationStrength);
+  config.maxSearch = static_cast<int>(settings.Get("max_search"));
+  config.featureSplitting = settings.Get("feature_splitting") != 0.0;
+  config.linearBlend = settings.Get("linear_blend") != 0.0;
+  return config;
 }
 
 // One line through a pixel, as the blend traces it: pixels to each end and the end heights.
@@ -145,10 +153,10 @@ struct AxisTargets {
 
 class MlaaPass final : public Pass {
  public:
-  explicit MlaaPass(const Config& config)
-      : config_(config), horizontalSet_(kHorizontal.workSet), verticalSet_(kVertical.workSet) {}
+  MlaaPass(const PassInfo& info, const Config& config)
+      : info_(info), config_(config), horizontalSet_(kHorizontal.workSet), verticalSet_(kVertical.workSet) {}
 
-  const PassInfo& Info() const override { return mlaa::Info(); }
+  const PassInfo& Info() const override { return info_; }
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
     const int width = frame.Width(), height = frame.Height();
@@ -256,54 +264,74 @@ class MlaaPass final : public Pass {
     return workSet.Run(machine, strategy, KernelsOf(names), width, height, makeDetect, makeBlend);
   }
 
+  const PassInfo& info_;
   Config config_;
   WorkSet horizontalSet_, verticalSet_;
   std::optional<sim::Texture2D<glm::vec4>> colour_, horizontal_, output_, edgesH_, edgesV_;
   std::optional<sim::Texture2D<glm::vec2>> weightsH_, weightsV_;
 };
 
-std::vector<SettingInfo> Settings() {
+// Each variant declares the tunables its test uses and no others (nothing silently ignored).
+std::vector<SettingInfo> SettingsOf(Thresholding thresholding) {
   // The talk publishes the tests, not their parameters: every default below is ours
   // (docs/mlaa.md "Parameters").
-  return {
-      {.name = "thresholding", .defaultValue = 1, .min = 0, .max = 2, .integer = true,
-       .doc = "0 absolute, 1 relative (seed 004's main test), 2 relative predicated by depth edges"},
-      {.name = "threshold", .defaultValue = 0.1, .min = 0.0, .max = 1.0, .minExclusive = true,
-       .doc = "absolute: an edge when the largest channel difference exceeds it (SMAA_THRESHOLD's value)"},
-      {.name = "scale", .defaultValue = 0.2, .min = 0.0, .max = 1.0,
-       .doc = "relative: T(p) = max(lower_bound, scale x max channel of p) (seed 004; not published)"},
-      {.name = "lower_bound", .defaultValue = 0.04, .min = 0.0, .max = 1.0,
-       .doc = "relative: the threshold's floor, the cut-off for very dark regions (seed 004; not published)"},
-      {.name = "predication_lower_bound", .defaultValue = 0.01, .min = 0.0, .max = 1.0,
-       .doc = "predicated: depth edge floor (SMAA_PREDICATION_THRESHOLD's value)"},
-      {.name = "predication_relative", .defaultValue = 0.01, .min = 0.0, .max = 1.0,
-       .doc = "predicated: depth edge threshold's scale of the depth (the talk's relative test on one channel)"},
-      {.name = "predication_scale", .defaultValue = 2.0, .min = 1.0, .max = 5.0,
-       .doc = "predicated: colour threshold x this everywhere (SMAA_PREDICATION_SCALE's value and range)"},
-      {.name = "predication_strength", .defaultValue = 0.75, .min = 0.0, .max = 1.0,
-       .doc = "predicated: and x (1 - this) at depth edges: 0.75 halves the relative threshold there"},
-      {.name = "max_search", .defaultValue = 32, .min = 0, .max = 254, .integer = true,
-       .doc = "pixels traced along a line on each side of a pixel (SMAA HIGH's 16 steps x 2 px)"},
-      {.name = "feature_splitting", .defaultValue = 1, .min = 0, .max = 1, .integer = true,
-       .doc = "1: split lines where the gradient of the channel sum changes sign (seed 004)"},
-      {.name = "linear_blend", .defaultValue = 0, .min = 0, .max = 1, .integer = true,
-       .doc = "0: blend the 8-bit gamma codes as the PS3's SPUs did; 1: blend linear values through sRGB views"},
-  };
+  std::vector<SettingInfo> settings;
+  if (thresholding == Thresholding::Absolute) {
+    settings.push_back({.name = "threshold", .defaultValue = 0.1, .min = 0.0, .max = 1.0, .minExclusive = true,
+                        .doc = "an edge when the largest channel difference exceeds it (SMAA_THRESHOLD's value)"});
+  } else {
+    settings.push_back({.name = "scale", .defaultValue = 0.2, .min = 0.0, .max = 1.0,
+                        .doc = "T(p) = max(lower_bound, scale x max channel of p) (seed 004; not published)"});
+    settings.push_back({.name = "lower_bound", .defaultValue = 0.04, .min = 0.0, .max = 1.0,
+                        .doc = "the threshold's floor, the cut-off for very dark regions (seed 004; not published)"});
+  }
+  if (thresholding == Thresholding::Predicated) {
+    settings.push_back({.name = "predication_lower_bound", .defaultValue = 0.01, .min = 0.0, .max = 1.0,
+                        .doc = "depth edge floor (SMAA_PREDICATION_THRESHOLD's value)"});
+    settings.push_back({.name = "predication_relative", .defaultValue = 0.01, .min = 0.0, .max = 1.0,
+                        .doc = "depth edge threshold's scale of the depth (the talk's relative test on one channel)"});
+    settings.push_back({.name = "predication_scale", .defaultValue = 2.0, .min = 1.0, .max = 5.0,
+                        .doc = "colour threshold x this everywhere (SMAA_PREDICATION_SCALE's value and range)"});
+    settings.push_back({.name = "predication_strength", .defaultValue = 0.75, .min = 0.0, .max = 1.0,
+                        .doc = "and x (1 - this) at depth edges: 0.75 halves the relative threshold there"});
+  }
+  settings.push_back({.name = "max_search", .defaultValue = 32, .min = 0, .max = 254, .integer = true,
+                      .doc = "pixels traced along a line on each side of a pixel (SMAA HIGH's 16 steps x 2 px)"});
+  settings.push_back({.name = "feature_splitting", .defaultValue = 1, .min = 0, .max = 1, .integer = true,
+                      .doc = "1: split lines where the gradient of the channel sum changes sign (seed 004)"});
+  settings.push_back({.name = "linear_blend", .defaultValue = 0, .min = 0, .max = 1, .integer = true,
+                      .doc = "0: blend the 8-bit gamma codes as the PS3's SPUs did; 1: blend linear values through "
+                             "sRGB views"});
+  return settings;
 }
 
-}  // namespace
+struct VariantNames {
+  std::string_view name, description;
+};
 
-const PassInfo& Info() {
-  static const PassInfo info{
-      .name = "mlaa",
-      .description = "PS3 MLAA: absolute, relative or depth-predicated thresholding, feature splitting, L/Z/U "
-                     "revectorisation, horizontal then vertical pass",
+constexpr VariantNames NamesOf(Thresholding thresholding) {
+  switch (thresholding) {
+    case Thresholding::Absolute:
+      return {"mlaa-absolute", "PS3 MLAA with absolute thresholding (largest channel difference over a threshold)"};
+    case Thresholding::Relative:
+      return {"mlaa", "PS3 MLAA: relative thresholding, feature splitting, L/Z/U revectorisation, horizontal then "
+                      "vertical pass"};
+    case Thresholding::Predicated:
+      return {"mlaa-predicated", "PS3 MLAA with relative thresholds predicated by the frame's depth edges"};
+  }
+  return {};
+}
+
+PassInfo MakeInfo(Thresholding thresholding) {
+  std::vector<FrameInput> inputs{FrameInput::Colour};
+  if (thresholding == Thresholding::Predicated) inputs.push_back(FrameInput::Depth);
+  return {
+      .name = NamesOf(thresholding).name,
+      .description = NamesOf(thresholding).description,
       .source = "passes/mlaa/mlaa.h",
-      .settings = Settings(),
-      .presets = {{"absolute", {{"thresholding", 0}}},
-                  {"relative", {{"thresholding", 1}}},
-                  {"predicated", {{"thresholding", 2}}}},
-      .inputs = {FrameInput::Colour, FrameInput::Depth},
+      .settings = SettingsOf(thresholding),
+      .presets = {},
+      .inputs = inputs,
       .studiedDispatches = {kHorizontal.consume, kVertical.consume},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       // Colour, horizontal and output targets and the decoded output (vec4 each), two edges
@@ -312,10 +340,28 @@ const PassInfo& Info() {
       .bytesPerPixel = 4 * sizeof(glm::vec4) + 2 * (sizeof(glm::vec4) + 4 * sizeof(float)) +
                        2 * (sizeof(glm::vec2) + 2 * sizeof(float)) + 2 * (1 + sizeof(std::uint32_t)),
       .temporal = false,
+      .variantOf = thresholding == Thresholding::Relative ? "" : "mlaa",
   };
+}
+
+}  // namespace
+
+template <Thresholding T>
+const PassInfo& Info() {
+  static const PassInfo info = MakeInfo(T);
   return info;
 }
 
-std::unique_ptr<Pass> Make(const PassSettings& settings) { return std::make_unique<MlaaPass>(ConfigOf(settings)); }
+template <Thresholding T>
+std::unique_ptr<Pass> Make(const PassSettings& settings) {
+  return std::make_unique<MlaaPass>(Info<T>(), ConfigOf(T, settings));
+}
+
+template const PassInfo& Info<Thresholding::Absolute>();
+template const PassInfo& Info<Thresholding::Relative>();
+template const PassInfo& Info<Thresholding::Predicated>();
+template std::unique_ptr<Pass> Make<Thresholding::Absolute>(const PassSettings&);
+template std::unique_ptr<Pass> Make<Thresholding::Relative>(const PassSettings&);
+template std::unique_ptr<Pass> Make<Thresholding::Predicated>(const PassSettings&);
 
 }  // namespace passes::mlaa

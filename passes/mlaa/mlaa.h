@@ -26,16 +26,19 @@
 // is also what the in-place PS3 pass did: the vertical pass detects on the horizontal pass's
 // result). The work-set shape is the sum of the two. Layers: "edges-h", "edges-v" (R, G, B, A)
 // and "weights-h" (R: from the pixel above, G: from below), "weights-v" (R: from the left, G:
-// from the right). Presets: "absolute", "relative" (the default, the talk's main test),
-// "predicated".
+// from the right). Registered as three variants of the thresholding: "mlaa" (relative, the talk's
+// main test), "mlaa-absolute" and "mlaa-predicated" (depth), so one run compares them.
 
 #include <memory>
 
+#include "passes/mlaa/mlaa_kernels.h"
 #include "passes/pass.h"
 
 namespace passes::mlaa {
 
+template <Thresholding T>
 const PassInfo& Info();
+template <Thresholding T>
 std::unique_ptr<Pass> Make(const PassSettings& settings);
 
 }  // namespace passes::mlaa

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 #include "sim/formats.h"
