@@ -131,6 +131,9 @@ struct PassInfo {
   // Host bytes per pixel one run of the pass holds at once (outputs, intermediates, queues), for
   // the memory guard.
   std::uint64_t bytesPerPixel = 0;
+  // Bytes per pixel of the layers one run returns (PassLayer floats): the study keeps them for
+  // every strategy it runs, after the pass's instance is gone, so the memory guard adds them up.
+  std::uint64_t layerBytesPerPixel = 0;
   bool temporal = false;  // keeps history across frames
   // The coverage samples of the EQAA surface the pass reads (S2x: 2); 0 when it reads none. The
   // study runs such a pass on the first of its frames with that many samples.

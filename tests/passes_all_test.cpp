@@ -81,6 +81,15 @@ TEST_P(EveryPass, DeclaresWhatTheStudyNeeds) {
   }
 }
 
+// The memory guard adds up the layers the study keeps per strategy run: the declaration must be
+// what a run returns.
+TEST_P(EveryPass, DeclaresTheBytesOfTheLayersItReturns) {
+  const PassRun run = RunPass(Pass(), Info().strategies.front(), 2);
+  std::uint64_t bytes = 0;
+  for (const PassLayer& layer : run.output.layers) bytes += layer.values.size() * sizeof(float);
+  EXPECT_EQ(bytes, Info().layerBytesPerPixel * std::uint64_t(kWidth) * std::uint64_t(kHeight));
+}
+
 // The timing estimate's instruction counts say where they come from (KernelInfo::source).
 TEST_P(EveryPass, EveryKernelCitesTheSourceOfItsInstructionCount) {
   for (const Strategy strategy : Info().strategies) {

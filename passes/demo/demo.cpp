@@ -128,6 +128,7 @@ const PassInfo& Info() {
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       // Blended colour, edge texture and its layer copy, stencil byte, queue entry.
       .bytesPerPixel = sizeof(glm::vec4) + 2 * sizeof(float) + 1 + sizeof(std::uint32_t),
+      .layerBytesPerPixel = sizeof(float),  // edges
       .temporal = false,
   };
   return info;

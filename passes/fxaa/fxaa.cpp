@@ -188,6 +188,7 @@ const PassInfo& Info() {
       // The sRGB colour target, rgbl, the output and its decoded copy (vec4 each), the span record
       // and its layer (vec4 each), the luma layer, the stencil byte and a queue entry.
       .bytesPerPixel = 6 * sizeof(glm::vec4) + sizeof(float) + 1 + sizeof(std::uint32_t),
+      .layerBytesPerPixel = (1 + 4) * sizeof(float),  // luma, span
       .temporal = false,
   };
   return info;

@@ -292,6 +292,7 @@ const PassInfo& Info() {
       // vec4, membership and stencil bytes, the stencil form's two R32 records, and the queue's
       // item and colour words (a quarter of the screen).
       .bytesPerPixel = sizeof(glm::vec3) + 3 * sizeof(float) + sizeof(glm::vec4) + 2 + 2 * sizeof(std::uint32_t) + 2,
+      .layerBytesPerPixel = 2 * sizeof(float),  // luma, items
       .temporal = false,
   };
   return info;

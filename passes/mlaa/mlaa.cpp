@@ -341,6 +341,7 @@ PassInfo MakeInfo(Thresholding thresholding) {
                        2 * (sizeof(glm::vec2) + 2 * sizeof(float)) + 2 * (1 + sizeof(std::uint32_t)),
       .temporal = false,
       .variantOf = thresholding == Thresholding::Relative ? "" : "mlaa",
+      .layerBytesPerPixel = 2 * (4 + 2) * sizeof(float),  // edges-h, edges-v, weights-h, weights-v
   };
 }
 
