@@ -2,6 +2,7 @@
 
 #include "passes/registry.h"
 
+#include "passes/cmaa2/cmaa2.h"
 #include "passes/copy/copy.h"
 #include "passes/demo/demo.h"
 #include "passes/filmic_smaa/filmic_smaa.h"
@@ -19,6 +20,7 @@ std::span<const RegisteredPass> AllPasses() {
       {smaa::Info<smaa::Variant::LumaPredicated>, smaa::Make<smaa::Variant::LumaPredicated>},
       {smaa::Info<smaa::Variant::S2x>, smaa::Make<smaa::Variant::S2x>},
       {filmic_smaa::Info, filmic_smaa::Make},
+      {cmaa2::Info, cmaa2::Make},
   };
   return kPasses;
 }
