@@ -70,7 +70,7 @@ TEST(Cmaa2E4Colour, FieldsSitWhereTheFormulaPutsThem) {
 // ---- Edges and candidates ----
 
 std::uint32_t EdgeBits(const std::function<float(int, int)>& luma, float threshold = 0.07f, float lca = 0.10f) {
-  return cmaa2::EdgesOf(luma, cmaa2::Config{.edgeThreshold = threshold, .localContrastAdaptation = lca}).bits;
+  return cmaa2::EdgesOf(luma, cmaa2::Config{.edgeThreshold = threshold, .localContrastAdaptation = lca});
 }
 
 TEST(Cmaa2Edges, AStepGivesTheEdgeOnItsSideOnly) {
@@ -104,6 +104,19 @@ TEST(Cmaa2Edges, CandidatesAreTheEdgeSetsWithACorner) {
   for (std::uint32_t bits = 0; bits < 16; ++bits) {
     const bool expected = !(bits == 0 || bits == 1 || bits == 2 || bits == 4 || bits == 8 || bits == 5 || bits == 10);
     EXPECT_EQ(cmaa2::IsCandidate(bits), expected) << bits;
+  }
+}
+
+// The head reset of a 2x2 block looks at its 12 contrasts (window offsets -1..2): a single pixel
+// changed in the 4x4 window around the block triggers it unless it is a corner of the window,
+// which touches none of them.
+TEST(Cmaa2Edges, ABlockResetsItsHeadWhenOneOfItsTwelveContrastsIsNonZero) {
+  for (int py = -1; py <= 2; ++py) {
+    for (int px = -1; px <= 2; ++px) {
+      const bool corner = (px == -1 || px == 2) && (py == -1 || py == 2);
+      EXPECT_EQ(cmaa2::BlockHasContrast([&](int dx, int dy) { return dx == px && dy == py ? 0.5f : 0.25f; }), !corner)
+          << px << "," << py;
+    }
   }
 }
 
@@ -324,6 +337,26 @@ TEST(Cmaa2WorstCase, ACheckerboardFillsTheCompleteListsAndOverflowsTheReferenceD
               static_cast<std::uint64_t>(pixels / 2));
   }
   ExpectBothStrategiesEqual(image);
+}
+
+// Single white pixels on the even-even grid: each is a candidate with one simple-shape item (no
+// Z: its neighbours' edges are parallel), one item per quad, so 64 quads need a location. The
+// reference's default location list holds (256 + 3) / 6 = 43: 21 quads are dropped, counted, and
+// left unwritten; the item list (128) holds all 64 items.
+TEST(Cmaa2WorstCase, ALocationOverflowIsCountedAndItsQuadsAreLeftUnwritten) {
+  const int side = 16;
+  const sim::Texture2D<glm::vec4> image =
+      GreyImage(side, side, [](int x, int y) { return x % 2 == 0 && y % 2 == 0 ? 255 : 0; });
+  for (const Strategy strategy : kAllStrategies) {
+    const Cmaa2Run run = RunCmaa2(image, strategy, "cmaa2:reference_buffers=1");
+    EXPECT_EQ(run.Counter("cmaa2/process-candidates", "cmaa2/blend_items"), 64u);
+    EXPECT_EQ(run.Counter("cmaa2/process-candidates", "cmaa2/blend_items_dropped"), 0u);
+    EXPECT_EQ(run.Counter("cmaa2/process-candidates", "cmaa2/blend_locations_dropped"), 21u);
+    EXPECT_EQ(run.BytesWritten("cmaa2/deferred-colour-apply", "cmaa2/colour"), 4u * 43u);
+    const Cmaa2Run complete = RunCmaa2(image, strategy);
+    EXPECT_EQ(complete.Counter("cmaa2/process-candidates", "cmaa2/blend_locations_dropped"), 0u);
+    EXPECT_EQ(complete.BytesWritten("cmaa2/deferred-colour-apply", "cmaa2/colour"), 4u * 64u);
+  }
 }
 
 }  // namespace

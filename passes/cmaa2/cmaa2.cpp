@@ -2,6 +2,7 @@
 
 #include "passes/cmaa2/cmaa2.h"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,13 +24,26 @@ constexpr std::string_view kApplyDispatch = "cmaa2/deferred-colour-apply";
 constexpr int kApplyQuadsPerGroup = 32;
 constexpr glm::ivec3 kApplyGroup{4, kApplyQuadsPerGroup, 1};
 
+// The compute detect's LDS luma tile: the 8x8 group, one pixel before and two after in each
+// direction (the window of docs/cmaa2.md "Waves").
+constexpr int kLumaTileWidth = kWorkSetTileSide + 3, kLumaTileHeight = kWorkSetTileSide + 3;
+constexpr int kLumaTileSize = kLumaTileWidth * kLumaTileHeight;
+using LumaWindow = std::array<std::array<float, 4>, 4>;
+
 // Hand counts of CMAA2.hlsl's kernels as GCN VALU instructions per wave.
-const sim::KernelInfo kDetectKernel{
+const sim::KernelInfo kDetectPixelKernel{
     .vgprs = 40, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 150,
     .source = "hand count of EdgesColor2x2CS's per-pixel share: 9 loads' addresses and lumas (3 sqrt, 3 mul/add, "
               "~8 each, ~75), 12 contrasts (~24), 4 local-contrast maxima and threshold tests (~24), the "
-              "candidate test and append or stencil export (~10), the head reset and, on even lanes, the "
-              "neighbour's lumas and edges and the packed store (~35 averaged over lanes)"};
+              "candidate test and stencil export (~10), the head reset and, on even lanes, the neighbour's "
+              "lumas and edges and the packed store (~35 averaged over lanes)"};
+const sim::KernelInfo kDetectComputeKernel{
+    .vgprs = 40, .sgprs = 24, .ldsBytesPerGroup = kLumaTileSize * static_cast<int>(sizeof(float)),
+    .valuInstructionsPerWave = 105,
+    .source = "hand count of EdgesColor2x2CS's per-pixel share with the lumas from LDS: the tile fill (110 "
+              "lumas over 64 lanes, ~15), 9-12 LDS addresses (~15), contrasts, adaptation and tests (~48), the "
+              "candidate test and append (~10), the head reset and the even lanes' neighbour edges and packed "
+              "store (~17 averaged)"};
 const sim::KernelInfo kCandidatesKernel{
     .vgprs = 48, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 260,
     .source = "hand count of ProcessCandidatesCS: 7 edge loads and unpacks (~45), the simple shape (~50) and "
@@ -46,8 +60,8 @@ const sim::KernelInfo kApplyKernel{
 constexpr WorkSetKernels kKernels{
     .detectDispatch = kEdgeDispatch,
     .consumeDispatch = kCandidatesDispatch,
-    .detectPixel = kDetectKernel,
-    .detectCompute = kDetectKernel,
+    .detectPixel = kDetectPixelKernel,
+    .detectCompute = kDetectComputeKernel,
     .consume = kCandidatesKernel,
 };
 
@@ -97,28 +111,61 @@ class Cmaa2Pass final : public Pass {
 
  private:
   // EdgesColor2x2CS's arithmetic per pixel (docs/cmaa2.md "Thread mapping").
-  auto MakeDetect(sim::Dispatch& d, const sim::Texture2D<glm::vec4>& colour, sim::Texture2D<std::uint32_t>& edges) {
+  template <typename Form>
+  auto MakeDetect(sim::Dispatch& d, Form, const sim::Texture2D<glm::vec4>& colour,
+                  sim::Texture2D<std::uint32_t>& edges) {
     const sim::TextureView<glm::vec4> linear = d.Read(colour);
     const sim::RwTextureView<std::uint32_t> edgesOut = d.ReadWrite(edges);
     const sim::RwBufferView<std::uint32_t> heads = d.ReadWrite(working_->heads);
     const int headsWidth = working_->headsWidth;
     const Config config = config_;
-    return [=](const auto& lane, int x, int y) {
-      float lumas[3][4];  // rows y-1..y+1, columns x-1..x+2 (the last only on even lanes)
-      const int columns = x % 2 == 0 ? 4 : 3;
-      for (int row = 0; row < 3; ++row) {
-        for (int column = 0; column < columns; ++column) {
-          lumas[row][column] = LumaForEdges(glm::vec3(linear.Load(lane, x - 1 + column, y - 1 + row)));
+    // The pixel's edges from its luma window (rows y-1..y+2, columns x-1..x+2: the last column
+    // read only on even lanes, for their neighbour's half of the edges texel; the last row only on
+    // a quad's top-left lane, for the block's head reset), then the candidate test.
+    auto finish = [=](const auto& lane, int x, int y, const LumaWindow& lumas) {
+      const auto at = [&](int ox) { return [&, ox](int dx, int dy) { return lumas[dy + 1][ox + dx + 1]; }; };
+      const std::uint32_t own = EdgesOf(at(0), config);
+      if (x % 2 == 0) {
+        if (y % 2 == 0 && BlockHasContrast(at(0))) {
+          heads.Store(lane, static_cast<std::size_t>(y / 2 * headsWidth + x / 2), kEmptyList);
         }
+        edgesOut.Store(lane, x / 2, y, own | EdgesOf(at(1), config) << 4);
       }
-      const auto edgesAt = [&](int ox) {
-        return EdgesOf([&](int dx, int dy) { return lumas[dy + 1][ox + dx + 1]; }, config);
-      };
-      const PixelEdges own = edgesAt(0);
-      if (own.anyFractional) heads.Store(lane, static_cast<std::size_t>(y / 2 * headsWidth + x / 2), kEmptyList);
-      if (x % 2 == 0) edgesOut.Store(lane, x / 2, y, own.bits | edgesAt(1).bits << 4);
-      return IsCandidate(own.bits);
+      return IsCandidate(own);
     };
+    // Fills the window from `luma(column, row)` (0-based in the window).
+    const auto window = [](int x, int y, auto&& luma) {
+      LumaWindow lumas{};
+      const int columns = x % 2 == 0 ? 4 : 3, rows = x % 2 == 0 && y % 2 == 0 ? 4 : 3;
+      for (int row = 0; row < rows; ++row) {
+        for (int column = 0; column < columns; ++column) lumas[row][column] = luma(column, row);
+      }
+      return lumas;
+    };
+    if constexpr (Form::value == DetectForm::Pixel) {
+      return [=](const sim::PixelLane& lane, int x, int y) {
+        return finish(lane, x, y, window(x, y, [&](int column, int row) {
+                        return LumaForEdges(glm::vec3(linear.Load(lane, x - 1 + column, y - 1 + row)));
+                      }));
+      };
+    } else {
+      // The group's lumas in LDS, as the reference's group shares its fractional edges: the 8x8
+      // pixels, one column and row before, two columns and one row after.
+      auto fillTile = [=](sim::ComputeLane& lane) {
+        for (int i = lane.localIndex; i < kLumaTileSize; i += kWorkSetTileSide * kWorkSetTileSide) {
+          const int x = lane.groupId.x * kWorkSetTileSide - 1 + i % kLumaTileWidth;
+          const int y = lane.groupId.y * kWorkSetTileSide - 1 + i / kLumaTileWidth;
+          lane.LdsStore<float>(static_cast<std::size_t>(i), LumaForEdges(glm::vec3(linear.Load(lane, x, y))));
+        }
+      };
+      auto detect = [=](sim::ComputeLane& lane, int x, int y) {
+        return finish(lane, x, y, window(x, y, [&](int column, int row) {
+                        return lane.LdsLoad<float>(
+                            static_cast<std::size_t>((lane.localId.y + row) * kLumaTileWidth + lane.localId.x + column));
+                      }));
+      };
+      return StagedDetect<decltype(fillTile), decltype(detect)>{fillTile, detect};
+    }
   }
 
   auto MakeProcessCandidates(sim::Dispatch& d, const sim::Texture2D<glm::vec4>& colour,
@@ -200,7 +247,7 @@ PassOutput Cmaa2Pass::Run(sim::Machine& machine, const FrameInputs& frame, Strat
   if (!working_ || working_->width != width || working_->height != height) {
     working_.emplace(width, height, Capacities::Of(width, height, config_.referenceBufferSizes));
   }
-  auto makeDetect = [&](sim::Dispatch& d, auto) { return MakeDetect(d, colour, edges); };
+  auto makeDetect = [&](sim::Dispatch& d, auto form) { return MakeDetect(d, form, colour, edges); };
   auto makeConsume = [&](sim::Dispatch& d) { return MakeProcessCandidates(d, colour, edges); };
   PassOutput output;
   output.SetWorkSet(workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeConsume));

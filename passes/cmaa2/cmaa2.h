@@ -11,10 +11,11 @@
 //                             ends, > threshold -> 4 edge bits; a pixel with two edges meeting at a
 //                             corner is a candidate. Even-x lanes store the texel of their pixel
 //                             pair: edges R8_UINT ((W+1)/2 x H, low nibble = even x; every pixel,
-//                             0 included). A pixel with any non-zero contrast resets its quad's
-//                             list head to 0xFFFFFFFF.
-//                             stencil: full-screen PS, stencil = 1 on candidates
-//                             queue:   compute 8x8, appends candidates to the work-set queue
+//                             0 included). A quad's top-left lane resets the quad's list head to
+//                             0xFFFFFFFF when one of the 2x2 block's 12 contrasts is non-zero.
+//                             stencil: full-screen PS loading its window, stencil = 1 on candidates
+//                             queue:   compute 8x8, an 11x11 luma tile in LDS (484 bytes) behind a
+//                                      barrier, appends candidates to the work-set queue
 //   cmaa2/queue-args          (queue only) candidate count -> indirect arguments
 //     ComputeDispatchArgsCS (2,1,1)
 //   cmaa2/process-candidates  (consume, studied) per candidate: the simple-shape blend (3x3 edges,

@@ -49,17 +49,12 @@ inline float LumaForEdges(const glm::vec3& linear) {
   return std::sqrt(linear.r) * 0.299f + (std::sqrt(linear.g) * 0.587f + std::sqrt(linear.b) * 0.114f);
 }
 
-struct PixelEdges {
-  std::uint32_t bits = 0;       // kEdge* after local contrast adaptation and the threshold
-  bool anyFractional = false;   // one of the four contrasts is non-zero (the head-clear condition)
-};
-
 // The pixel at window offset (0, 0)'s four edges from its 3x3 luma window (`luma(dx, dy)`, dx and
 // dy in -1..1). Each edge is the thread-independent arithmetic of EdgesColor2x2CS: the contrast
 // |a - b| (ComputeEdgeLuma) minus amount x the largest of the four perpendicular contrasts touching
 // its two ends (ComputeLocalContrastH / V), strictly above the threshold.
 template <typename Luma>
-PixelEdges EdgesOf(Luma&& luma, const Config& config) {
+std::uint32_t EdgesOf(Luma&& luma, const Config& config) {
   // horizontalNeighbour(dx, dy): between (dx, dy) and (dx + 1, dy); below(dx, dy): (dx, dy), (dx, dy + 1).
   const auto across = [&](int dx, int dy) { return std::fabs(luma(dx, dy) - luma(dx + 1, dy)); };
   const auto below = [&](int dx, int dy) { return std::fabs(luma(dx, dy) - luma(dx, dy + 1)); };
@@ -67,13 +62,31 @@ PixelEdges EdgesOf(Luma&& luma, const Config& config) {
   const float amount = config.localContrastAdaptation, threshold = config.edgeThreshold;
   const float right = across(0, 0), left = across(-1, 0), bottom = below(0, 0), top = below(0, -1);
   const auto on = [&](float contrast, float perpendicular) { return contrast - perpendicular * amount > threshold; };
-  PixelEdges edges;
-  edges.anyFractional = right != 0.0f || left != 0.0f || bottom != 0.0f || top != 0.0f;
-  if (on(right, max4(top, bottom, below(1, -1), below(1, 0)))) edges.bits |= kEdgeRight;
-  if (on(bottom, max4(left, right, across(-1, 1), across(0, 1)))) edges.bits |= kEdgeBelow;
-  if (on(left, max4(below(-1, -1), below(-1, 0), top, bottom))) edges.bits |= kEdgeLeft;
-  if (on(top, max4(across(-1, -1), across(0, -1), left, right))) edges.bits |= kEdgeAbove;
-  return edges;
+  std::uint32_t bits = 0;
+  if (on(right, max4(top, bottom, below(1, -1), below(1, 0)))) bits |= kEdgeRight;
+  if (on(bottom, max4(left, right, across(-1, 1), across(0, 1)))) bits |= kEdgeBelow;
+  if (on(left, max4(below(-1, -1), below(-1, 0), top, bottom))) bits |= kEdgeLeft;
+  if (on(top, max4(across(-1, -1), across(0, -1), left, right))) bits |= kEdgeAbove;
+  return bits;
+}
+
+// EdgesColor2x2CS's "someNonZeroEdges" for the 2x2 block whose top-left pixel is at window offset
+// (0, 0) (`luma(dx, dy)`, dx in -1..2, dy in -1..2): one of its 12 contrasts (right and bottom of
+// its four pixels, left of its left column, top of its top row) is non-zero. Such a block resets
+// its quad's list head.
+template <typename Luma>
+bool BlockHasContrast(Luma&& luma) {
+  for (int dy = 0; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (luma(dx, dy) != luma(dx + 1, dy)) return true;  // left, inner, right contrasts
+    }
+  }
+  for (int dx = 0; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      if (luma(dx, dy) != luma(dx, dy + 1)) return true;  // top, inner, bottom contrasts
+    }
+  }
+  return false;
 }
 
 // "at least one two edge corner": R*G + G*B + B*A + A*R != 0 on the 0/1 edges.
