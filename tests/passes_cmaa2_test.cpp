@@ -266,19 +266,57 @@ sim::Texture2D<glm::vec4> Transformed(const sim::Texture2D<glm::vec4>& image, in
   return out;
 }
 
-// The Z step with equal halves is symmetric under mirroring in x (the normal Z found at the black
-// pixel becomes an inverted Z found at the white one; same lengths, same items) and in y.
-TEST(Cmaa2Symmetry, TheZStepMirrorsBitForBit) {
-  const int width = 32, height = 12;
-  const auto inside = [](int x, int y) { return y >= 2 && ((x >= 4 && x <= 15 && y <= 7) || (x >= 16 && x <= 27 && y <= 8)); };
-  const sim::Texture2D<glm::vec4> image = GreyImage(width, height, [&](int x, int y) { return inside(x, y) ? 255 : 0; });
+// The Z step image of the golden test with its halves `left` and `right` pixels long.
+sim::Texture2D<glm::vec4> ZStep(int left, int right) {
+  const auto inside = [=](int x, int y) {
+    return y >= 2 && ((x >= 16 - left && x <= 15 && y <= 7) || (x >= 16 && x < 16 + right && y <= 8));
+  };
+  return GreyImage(40, 12, [&](int x, int y) { return inside(x, y) ? 255 : 0; });
+}
+
+// Whether CMAA2's output of the image transformed by `kind` (0: mirror x, 1: mirror y, 2:
+// transpose), transformed back, is bit-identical to its output of the image.
+bool Symmetric(const sim::Texture2D<glm::vec4>& image, int kind) {
   const PassOutput straight = RunCmaa2(image).output;
-  for (const int kind : {0, 1, 2}) {
-    const PassOutput mirrored = RunCmaa2(Transformed(image, kind)).output;
-    const sim::Texture2D<glm::vec4> back = Transformed(mirrored.colour, kind);
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) EXPECT_EQ(back.At(x, y), straight.colour.At(x, y)) << kind << ": " << x << "," << y;
+  const sim::Texture2D<glm::vec4> back = Transformed(RunCmaa2(Transformed(image, kind)).output.colour, kind);
+  for (int y = 0; y < image.Height(); ++y) {
+    for (int x = 0; x < image.Width(); ++x) {
+      if (back.At(x, y) != straight.colour.At(x, y)) return false;
     }
+  }
+  return true;
+}
+
+// A Z with equal halves comes out the same mirrored in x (the normal Z found at the black pixel
+// becomes an inverted Z found at the white one: same lengths, same pixels), in y, or transposed.
+TEST(Cmaa2Symmetry, AZWithEqualHalvesMirrorsAndTransposesBitForBit) {
+  for (const int kind : {0, 1, 2}) {
+    EXPECT_TRUE(Symmetric(ZStep(12, 12), kind)) << kind;
+    EXPECT_TRUE(Symmetric(ZStep(7, 7), kind)) << kind;
+  }
+}
+
+// Swapping the halves' sides (mirror in x, transpose) swaps which half is computed as
+// (lerpStep i + lerpFromK) and which as 1 - (...): the same lerp factors in exact arithmetic, not
+// always in float. Halves 8 and 10 (lerp step 1/9) give pixel (13, 8) the factor 1.5 / 9, and
+// 1.5 / 9 x 1023 = 170.5 is a tie of the 10-bit quantisation: float rounding on either side picks
+// 170 or 171, one code apart in the output. Mirroring in y keeps the sides and stays exact.
+TEST(Cmaa2Symmetry, SwappingAZsHalvesCanMoveOnePixelByOneCode) {
+  const sim::Texture2D<glm::vec4> image = ZStep(8, 10);
+  EXPECT_TRUE(Symmetric(image, 1));
+  for (const int kind : {0, 2}) {
+    EXPECT_FALSE(Symmetric(image, kind)) << kind;
+    const PassOutput straight = RunCmaa2(image).output;
+    const sim::Texture2D<glm::vec4> back = Transformed(RunCmaa2(Transformed(image, kind)).output.colour, kind);
+    int differing = 0;
+    for (int y = 0; y < image.Height(); ++y) {
+      for (int x = 0; x < image.Width(); ++x) {
+        const int a = sim::FloatToSrgb8(straight.colour.At(x, y).r), b = sim::FloatToSrgb8(back.At(x, y).r);
+        EXPECT_LE(std::abs(a - b), 1) << kind << ": " << x << "," << y;
+        differing += a != b;
+      }
+    }
+    EXPECT_EQ(differing, 1) << kind;
   }
 }
 
