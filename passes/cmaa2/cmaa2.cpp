@@ -110,7 +110,7 @@ class Cmaa2Pass final : public Pass {
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override;
 
  private:
-  // EdgesColor2x2CS's arithmetic per pixel (docs/cmaa2.md "Thread mapping").
+  // EdgesColor2x2CS's arithmetic per pixel (docs/cmaa2.md "Waves").
   template <typename Form>
   auto MakeDetect(sim::Dispatch& d, Form, const sim::Texture2D<glm::vec4>& colour,
                   sim::Texture2D<std::uint32_t>& edges) {
@@ -150,7 +150,7 @@ class Cmaa2Pass final : public Pass {
       };
     } else {
       // The group's lumas in LDS, as the reference's group shares its fractional edges: the 8x8
-      // pixels, one column and row before, two columns and one row after.
+      // pixels with one column and row before and two after (kLumaTileWidth x kLumaTileHeight).
       auto fillTile = [=](sim::ComputeLane& lane) {
         for (int i = lane.localIndex; i < kLumaTileSize; i += kWorkSetTileSide * kWorkSetTileSide) {
           const int x = lane.groupId.x * kWorkSetTileSide - 1 + i % kLumaTileWidth;
