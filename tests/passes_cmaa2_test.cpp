@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -250,6 +251,29 @@ TEST(Cmaa2Golden, AZStepOfLength24BlendsALinearRampAlongTheStep) {
     }
   }
   ExpectBothStrategiesEqual(image);
+}
+
+// Odd sizes put a pixel pair's second half outside the image (its nibble computed from black, as
+// the reference's 2x2 threads do) and leave partial quads, tiles and groups: random three-level
+// images keep the strategies bit-identical, with Zs among them.
+TEST(Cmaa2Golden, OddSizedRandomImagesGiveBitIdenticalImagesUnderBothStrategies) {
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> level(0, 2);
+  std::uint64_t zShapes = 0;
+  for (const auto& [width, height] : {std::pair{37, 23}, {1, 9}, {9, 1}, {64, 3}}) {
+    std::vector<int> codes(static_cast<std::size_t>(width * height));
+    for (int& code : codes) code = level(random) * 120;
+    const sim::Texture2D<glm::vec4> image =
+        GreyImage(width, height, [&](int x, int y) { return codes[static_cast<std::size_t>(y * width + x)]; });
+    ExpectBothStrategiesEqual(image);
+    const Cmaa2Run run = RunCmaa2(image);
+    zShapes += run.Counter("cmaa2/process-candidates", "cmaa2/z_shapes");
+    // Nearly every quad has items: the reference's (W*H + 3) / 4 locations would not hold the
+    // 19 x 12 quads of 37 x 23 (213 < 228); one location per quad does.
+    EXPECT_EQ(run.Counter("cmaa2/process-candidates", "cmaa2/blend_locations_dropped"), 0u);
+    EXPECT_EQ(run.Counter("cmaa2/process-candidates", "cmaa2/blend_items_dropped"), 0u);
+  }
+  EXPECT_GT(zShapes, 0u);
 }
 
 // ---- Symmetry ----

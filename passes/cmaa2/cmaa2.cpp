@@ -66,12 +66,15 @@ constexpr WorkSetKernels kKernels{
 };
 
 // The item list and location list capacities (vaCMAA2DX11.cpp UpdateResources; aa-facts §4.1):
-// the reference's default "99.99% safe" sizes, or its "enough in all cases" ones.
+// the reference's default "99.99% safe" sizes, or its "enough in all cases" ones with one location
+// per quad: the reference's (W*H + 3) / 4 falls short of the (W+1)/2 x (H+1)/2 quads when W or H
+// is odd (docs/cmaa2.md "Queue sizing").
 struct Capacities {
   std::size_t items = 0, locations = 0;
   static Capacities Of(int width, int height, bool reference) {
     const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    return reference ? Capacities{pixels / 2, (pixels + 3) / 6} : Capacities{pixels, (pixels + 3) / 4};
+    const auto quads = static_cast<std::size_t>((width + 1) / 2) * static_cast<std::size_t>((height + 1) / 2);
+    return reference ? Capacities{pixels / 2, (pixels + 3) / 6} : Capacities{pixels, quads};
   }
 };
 
@@ -269,7 +272,7 @@ std::vector<SettingInfo> Settings() {
               "from an edge's (aa-facts §4.2); range of TSCMAA's nonDominantEdgeRemovalAmount (seed 003)"},
       {.name = "reference_buffers", .defaultValue = 0.0, .min = 0.0, .max = 1.0, .integer = true,
        .doc = "1: the reference's default \"99.99% safe\" item and location lists (W*H/2, (W*H+3)/6); 0: its "
-              "\"enough in all cases\" sizes (W*H, (W*H+3)/4), which hold a checkerboard (aa-facts §4.1)"},
+              "\"enough in all cases\" items (W*H) and a location per quad, which hold a checkerboard (aa-facts §4.1)"},
   };
 }
 
