@@ -376,8 +376,8 @@ TEST(Cmaa2Presets, TheThresholdDecidesWhetherAWeakCornerIsACandidate) {
 
 // A black and white checkerboard: every pixel is a candidate (white border pixels see black
 // outside; black ones have three edges), every pixel gets one simple-shape item (all Z scores
-// are negative: 2 + 2 - 2 - 0.7 x 4 inside) and no Z. The "enough in all cases" lists (W*H
-// items) hold them all; the reference's default lists (W*H/2) drop half the items, counted.
+// are negative: 2 + 2 - 2 - 0.7 x 4 inside) and no Z. The default lists hold them all; the
+// reference's default lists (W*H/2 items) drop half the items, counted.
 TEST(Cmaa2WorstCase, ACheckerboardFillsTheCompleteListsAndOverflowsTheReferenceDefaultsCounted) {
   const int side = 16, pixels = side * side;
   const sim::Texture2D<glm::vec4> image = GreyImage(side, side, [](int x, int y) { return (x + y) % 2 ? 255 : 0; });
@@ -399,6 +399,28 @@ TEST(Cmaa2WorstCase, ACheckerboardFillsTheCompleteListsAndOverflowsTheReferenceD
               static_cast<std::uint64_t>(pixels / 2));
   }
   ExpectBothStrategiesEqual(image);
+}
+
+// Four-level noise (codes 0, 85, 170, 255) is worse than the checkerboard for the item list: Z
+// shapes add their line pixels to most candidates' simple-shape items, more items than pixels (the
+// reference's "enough in all cases" W*H would drop some). Two per pixel hold them; the reference's
+// default W*H/2 fills up and counts every item it refuses.
+TEST(Cmaa2WorstCase, NoiseMakesMoreItemsThanPixelsAndTheDefaultListHoldsThem) {
+  const int side = 64, pixels = side * side;
+  std::mt19937 random(0);
+  std::uniform_int_distribution<int> level(0, 3);
+  std::vector<int> codes(static_cast<std::size_t>(pixels));
+  for (int& code : codes) code = level(random) * 85;
+  const sim::Texture2D<glm::vec4> image =
+      GreyImage(side, side, [&](int x, int y) { return codes[static_cast<std::size_t>(y * side + x)]; });
+  const Cmaa2Run run = RunCmaa2(image);
+  const std::uint64_t items = run.Counter("cmaa2/process-candidates", "cmaa2/blend_items");
+  EXPECT_GT(items, static_cast<std::uint64_t>(pixels));
+  EXPECT_EQ(run.Counter("cmaa2/process-candidates", "cmaa2/blend_items_dropped"), 0u);
+  ExpectBothStrategiesEqual(image);
+  const Cmaa2Run reference = RunCmaa2(image, Strategy::DeferredQueue, "cmaa2:reference_buffers=1");
+  EXPECT_EQ(reference.Counter("cmaa2/process-candidates", "cmaa2/blend_items"), static_cast<std::uint64_t>(pixels / 2));
+  EXPECT_EQ(reference.Counter("cmaa2/process-candidates", "cmaa2/blend_items_dropped"), items - pixels / 2);
 }
 
 // Single white pixels on the even-even grid: each is a candidate with one simple-shape item (no

@@ -66,15 +66,15 @@ constexpr WorkSetKernels kKernels{
 };
 
 // The item list and location list capacities (vaCMAA2DX11.cpp UpdateResources; aa-facts §4.1):
-// the reference's default "99.99% safe" sizes, or its "enough in all cases" ones with one location
-// per quad: the reference's (W*H + 3) / 4 falls short of the (W+1)/2 x (H+1)/2 quads when W or H
-// is odd (docs/cmaa2.md "Queue sizing").
+// the reference's default "99.99% safe" sizes, or its "enough in all cases" ones made to hold what
+// they do not (docs/cmaa2.md "Queue sizing"): two items per pixel (4-level noise makes 1.3) and
+// one location per quad (the reference's (W*H + 3) / 4 is short of the quads when W or H is odd).
 struct Capacities {
   std::size_t items = 0, locations = 0;
   static Capacities Of(int width, int height, bool reference) {
     const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     const auto quads = static_cast<std::size_t>((width + 1) / 2) * static_cast<std::size_t>((height + 1) / 2);
-    return reference ? Capacities{pixels / 2, (pixels + 3) / 6} : Capacities{pixels, quads};
+    return reference ? Capacities{pixels / 2, (pixels + 3) / 6} : Capacities{2 * pixels, quads};
   }
 };
 
@@ -272,7 +272,8 @@ std::vector<SettingInfo> Settings() {
               "from an edge's (aa-facts §4.2); range of TSCMAA's nonDominantEdgeRemovalAmount (seed 003)"},
       {.name = "reference_buffers", .defaultValue = 0.0, .min = 0.0, .max = 1.0, .integer = true,
        .doc = "1: the reference's default \"99.99% safe\" item and location lists (W*H/2, (W*H+3)/6); 0: its "
-              "\"enough in all cases\" items (W*H) and a location per quad, which hold a checkerboard (aa-facts §4.1)"},
+              "\"enough in all cases\" sizes made to hold a checkerboard and noise: 2*W*H items, a location per quad "
+              "(aa-facts §4.1; docs/cmaa2.md)"},
   };
 }
 
@@ -302,9 +303,9 @@ const PassInfo& Info() {
       .studiedDispatches = {kCandidatesDispatch},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       // The colour target and its decoded copy (vec4 each), the edges (a u32 per texel of two
-      // pixels), heads (a u32 per quad), items (W*H uint2), locations (a u32 per quad), the
+      // pixels), heads (a u32 per quad), items (2*W*H uint2), locations (a u32 per quad), the
       // two layers, membership and shape bytes, the stencil byte and the work-set queue.
-      .bytesPerPixel = 2 * sizeof(glm::vec4) + 2 + 1 + sizeof(glm::uvec2) + 1 + 2 * sizeof(float) + 2 + 1 +
+      .bytesPerPixel = 2 * sizeof(glm::vec4) + 2 + 1 + 2 * sizeof(glm::uvec2) + 1 + 2 * sizeof(float) + 2 + 1 +
                        sizeof(std::uint32_t),
       .temporal = false,
   };
