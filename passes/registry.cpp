@@ -2,6 +2,7 @@
 
 #include "passes/registry.h"
 
+#include "passes/cmaa2/cmaa2.h"
 #include "passes/copy/copy.h"
 #include "passes/demo/demo.h"
 #include "passes/filmic_smaa/filmic_smaa.h"
@@ -27,6 +28,7 @@ std::span<const RegisteredPass> AllPasses() {
       {mlaa::Info<mlaa::Thresholding::Relative>, mlaa::Make<mlaa::Thresholding::Relative>},
       {mlaa::Info<mlaa::Thresholding::Absolute>, mlaa::Make<mlaa::Thresholding::Absolute>},
       {mlaa::Info<mlaa::Thresholding::Predicated>, mlaa::Make<mlaa::Thresholding::Predicated>},
+      {cmaa2::Info, cmaa2::Make},
   };
   return kPasses;
 }
