@@ -278,12 +278,15 @@ std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::E
   const std::uint64_t metrics = 3 * sizeof(float) + 24 * sizeof(float);
   // Kept per mode: resolved colour, three error maps, the EQAA planes' resolve and counts.
   const std::uint64_t perMode = sizeof(glm::vec4) + 3 * sizeof(float) + 8 * sizeof(float);
-  // Per pass: what each strategy's run holds (the pass declares it) and the kept error maps.
-  std::uint64_t passes = 0;
+  // Passes run one instance at a time (PassInfo::bytesPerPixel, the largest counts); what the
+  // study keeps of each pass stays: its output colour, three error maps and every strategy's layers.
+  std::uint64_t largestRun = 0, kept = 0;
   for (const passes::PassConfig& pass : postPasses) {
-    passes += pass.Info().strategies.size() * pass.Info().bytesPerPixel + 3 * sizeof(float);
+    const passes::PassInfo& info = pass.Info();
+    largestRun = std::max(largestRun, info.bytesPerPixel);
+    kept += sizeof(glm::vec4) + 3 * sizeof(float) + info.strategies.size() * info.layerBytesPerPixel;
   }
-  return pixels * (largestFrame + groundTruth + metrics + modes.size() * perMode + passes);
+  return pixels * (largestFrame + groundTruth + metrics + modes.size() * perMode + largestRun + kept);
 }
 
 }  // namespace cli

@@ -8,6 +8,7 @@
 
 #include "passes/registry.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -345,6 +346,15 @@ TEST(FullSize, NoArgumentsRunsTheDefaultStudy) {
   EXPECT_EQ(report["configuration"]["height"], 1080);
   EXPECT_EQ(report["ground_truth"]["samples_per_pixel"], 256);
   EXPECT_EQ(report["passes"].size(), PassesTheDefaultModesFeed().size());
+  // The memory guard's estimate covers what the run really held (RUSAGE_CHILDREN: the largest
+  // resident set of the waited-for descendants, here the one aasim run).
+  std::vector<passes::PassConfig> passConfigs;
+  for (const std::string& name : PassesTheDefaultModesFeed()) passConfigs.push_back(passes::ResolvePass(name));
+  rusage usage{};
+  ASSERT_EQ(::getrusage(RUSAGE_CHILDREN, &usage), 0);
+  const std::uint64_t peak = std::uint64_t(usage.ru_maxrss) * 1024u;
+  EXPECT_LE(peak, cli::EstimateRunBytes(1920, 1080, cli::ParseEqaaModes("1S/1Z/1F,4S/4Z/4F,8S/4Z/2F,16S/8Z/4F"),
+                                        passConfigs));
   fs::remove_all(scratch);
 }
 

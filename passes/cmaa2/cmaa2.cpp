@@ -307,6 +307,7 @@ const PassInfo& Info() {
       // two layers, membership and shape bytes, the stencil byte and the work-set queue.
       .bytesPerPixel = 2 * sizeof(glm::vec4) + 2 + 1 + 2 * sizeof(glm::uvec2) + 1 + 2 * sizeof(float) + 2 + 1 +
                        sizeof(std::uint32_t),
+      .layerBytesPerPixel = 2 * sizeof(float),  // edges, candidates
       .temporal = false,
   };
   return info;

@@ -294,6 +294,7 @@ const PassInfo& Info() {
       .bytesPerPixel = sizeof(glm::vec3) + 3 * sizeof(float) + sizeof(glm::vec4) + 2 + 2 * sizeof(std::uint32_t) + 2,
       .layerBytesPerPixel = 2 * sizeof(float),  // luma, items
       .temporal = false,
+      .variantOf = "fxaa",
   };
   return info;
 }
