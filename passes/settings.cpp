@@ -19,6 +19,11 @@ std::string FormatValue(double value) {
 }
 
 std::string RangeText(const SettingInfo& info) {
+  if (!info.allowed.empty()) {
+    std::string values;
+    for (const double value : info.allowed) values += (values.empty() ? "" : ", ") + FormatValue(value);
+    return "{" + values + "}";
+  }
   return (info.minExclusive ? "(" : "[") + FormatValue(info.min) + ", " + FormatValue(info.max) + "]";
 }
 
@@ -64,6 +69,10 @@ void PassSettings::Set(std::string_view key, double value) {
   if (info.integer && value != std::floor(value)) {
     throw SettingsError("pass " + pass_ + ": " + std::string(key) + "=" + FormatValue(value) +
                         " must be an integer");
+  }
+  if (!info.allowed.empty() && std::find(info.allowed.begin(), info.allowed.end(), value) == info.allowed.end()) {
+    throw SettingsError("pass " + pass_ + ": " + std::string(key) + "=" + FormatValue(value) + " is not one of " +
+                        RangeText(info));
   }
   values_[index] = value;
 }

@@ -20,6 +20,8 @@ struct SettingInfo {
   bool minExclusive = false;  // (min, max] instead of [min, max]
   bool integer = false;
   std::string_view doc;  // one line, with the source of the default
+  // When not empty, the only legal values within the range (FXAA's quality presets 10-15, 20-29, 39).
+  std::vector<double> allowed = {};
 };
 
 struct Preset {

@@ -8,6 +8,7 @@
 
 #include "passes/fxaa/fxaa_kernels.h"
 #include "passes/work_set.h"
+#include "sim/check.h"
 #include "sim/formats.h"
 
 namespace passes::fxaa {
@@ -48,11 +49,9 @@ static_assert(std::size(kPresetNames) == kStepTables.size());
 
 Params ParamsOf(const PassSettings& settings) {
   const int preset = static_cast<int>(settings.Get("quality_preset"));
+  // The schema admits only the header's presets (SettingInfo::allowed).
   const StepTable* table = FindStepTable(preset);
-  if (table == nullptr) {
-    throw SettingsError("pass fxaa: quality_preset=" + std::to_string(preset) +
-                        " is not an FXAA_QUALITY__PRESET of Fxaa3_11.h (10-15, 20-29, 39)");
-  }
+  AASIM_CHECK(table != nullptr);
   return {.width = 1,
           .height = 1,
           .subpix = static_cast<float>(settings.Get("subpix")),
@@ -150,6 +149,13 @@ class FxaaPass final : public Pass {
   std::vector<glm::vec4> spans_;  // the consume's inspection record, one per pixel
 };
 
+// The quality_preset values Fxaa3_11.h defines: its step tables' presets.
+std::vector<double> PresetNumbers() {
+  std::vector<double> numbers;
+  for (const StepTable& table : kStepTables) numbers.push_back(table.preset);
+  return numbers;
+}
+
 std::vector<Preset> QualityPresets() {
   std::vector<Preset> presets;
   for (std::size_t i = 0; i < kStepTables.size(); ++i) {
@@ -179,7 +185,8 @@ const PassInfo& Info() {
                       "(default) .. 0.0312 visible limit"},
               {.name = "quality_preset", .defaultValue = kDefaultPreset, .min = 10, .max = 39, .integer = true,
                .doc = "FXAA_QUALITY__PRESET: the end search's step table, 10-15 medium dither, 20-29 low dither, 39 "
-                      "no dither (default 12)"},
+                      "no dither (default 12)",
+               .allowed = PresetNumbers()},
           },
       .presets = QualityPresets(),
       .inputs = {FrameInput::Colour},

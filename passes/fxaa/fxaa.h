@@ -38,7 +38,6 @@
 namespace passes::fxaa {
 
 const PassInfo& Info();
-// Throws SettingsError when quality_preset is not one of the header's presets.
 std::unique_ptr<Pass> Make(const PassSettings& settings);
 
 }  // namespace passes::fxaa
