@@ -155,6 +155,7 @@ nlohmann::ordered_json VariantJson(const std::optional<study::VariantDifference>
   if (!variant) return nullptr;
   return {{"pass", variant->baseline},
           {"differing_pixels", variant->pixels},
+          {"differing_pixels_over_one_code", variant->pixelsOverOneCode},
           {"max_code_difference", variant->maxCodes},
           {"psnr_db", Number(variant->psnr)}};
 }
@@ -444,7 +445,8 @@ std::string VariantParagraph(const StudyPass& pass, const study::VariantDifferen
   const std::uint64_t pixels = std::uint64_t(pass.image.colour.Width()) * std::uint64_t(pass.image.colour.Height());
   if (variant.pixels == 0) return "Against " + variant.baseline + " on the same frame: the same 8-bit image.";
   return "Against " + variant.baseline + " on the same frame: " + std::to_string(variant.pixels) + " pixels (" +
-         FormatPercent(variant.pixels, pixels) + "%) differ in their 8-bit sRGB codes, by up to " +
+         FormatPercent(variant.pixels, pixels) + "%) differ in their 8-bit sRGB codes, " +
+         std::to_string(variant.pixelsOverOneCode) + " of them by more than one code, by up to " +
          std::to_string(variant.maxCodes) + " codes; PSNR between the two images " + FormatFixed(variant.psnr, 2) +
          " dB.";
 }

@@ -240,7 +240,7 @@ class StudyRunner {
 
 VariantDifference CompareVariant(std::string baseline, const sim::Texture2D<glm::vec4>& image,
                                  const sim::Texture2D<glm::vec4>& baselineImage) {
-  VariantDifference difference{std::move(baseline), 0, 0,
+  VariantDifference difference{std::move(baseline), 0, 0, 0,
                                passes::Psnr(passes::ViewOf(image), passes::ViewOf(baselineImage))};
   const std::span<const glm::vec4> a = image.Texels(), b = baselineImage.Texels();
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -249,6 +249,7 @@ VariantDifference CompareVariant(std::string baseline, const sim::Texture2D<glm:
       largest = std::max(largest, std::abs(int(sim::FloatToSrgb8(a[i][c])) - int(sim::FloatToSrgb8(b[i][c]))));
     }
     difference.pixels += largest > 0 ? 1 : 0;
+    difference.pixelsOverOneCode += largest > 1 ? 1 : 0;
     difference.maxCodes = std::max(difference.maxCodes, largest);
   }
   return difference;

@@ -62,6 +62,9 @@ struct StudyPassRun {
 struct VariantDifference {
   std::string baseline;      // "smaa"
   std::uint64_t pixels = 0;  // pixels whose codes differ in any of R, G, B
+  // Of those, the pixels some channel of which differs by more than one code: more than the
+  // rounding of two targets of different formats (fxaa-miniengine's R11G11B10) can explain.
+  std::uint64_t pixelsOverOneCode = 0;
   int maxCodes = 0;          // the largest difference of one channel, in codes
   double psnr = 0.0;         // dB between the images (passes::Psnr); +infinity when identical
 };
