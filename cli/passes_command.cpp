@@ -32,10 +32,10 @@ void PrintPass(const passes::PassInfo& info, std::ostream& out) {
       << "  inputs      "
       << Join(info.inputs, [](passes::FrameInput input) { return kInputNames[static_cast<std::size_t>(input)]; })
       << (info.temporal ? "; keeps history across frames" : "") << "\n";
+  if (!info.variantOf.empty()) out << "  variant of  " << info.variantOf << " (the report measures their difference)\n";
   for (const passes::SettingInfo& setting : info.settings) {
-    out << "  " << setting.name << "=" << Number(setting.defaultValue) << "  " << (setting.minExclusive ? "(" : "[")
-        << Number(setting.min) << ", " << Number(setting.max) << "]" << (setting.integer ? " integer" : "") << "  "
-        << setting.doc << "\n";
+    out << "  " << setting.name << "=" << Number(setting.defaultValue) << "  " << passes::RangeText(setting)
+        << (setting.integer && setting.allowed.empty() ? " integer" : "") << "  " << setting.doc << "\n";
   }
   for (const passes::Preset& preset : info.presets) {
     out << "  preset=" << preset.name << "  "

@@ -18,14 +18,29 @@ std::string FormatValue(double value) {
   return text;
 }
 
+}  // namespace
+
 std::string RangeText(const SettingInfo& info) {
+  std::string text;
   if (!info.allowed.empty()) {
-    std::string values;
-    for (const double value : info.allowed) values += (values.empty() ? "" : ", ") + FormatValue(value);
-    return "{" + values + "}";
+    // Appended piece by piece: GCC 12's -Wrestrict misfires on "{" + std::string.
+    text += '{';
+    for (const double value : info.allowed) {
+      if (text.size() > 1) text += ", ";
+      text += FormatValue(value);
+    }
+    text += '}';
+    return text;
   }
-  return (info.minExclusive ? "(" : "[") + FormatValue(info.min) + ", " + FormatValue(info.max) + "]";
+  text += info.minExclusive ? '(' : '[';
+  text += FormatValue(info.min);
+  text += ", ";
+  text += FormatValue(info.max);
+  text += ']';
+  return text;
 }
+
+namespace {
 
 std::string Keys(std::span<const SettingInfo> schema) {
   std::string keys;

@@ -24,6 +24,9 @@ struct SettingInfo {
   std::vector<double> allowed = {};
 };
 
+// "[0, 1]", "(0, 0.5]", or the legal values "{10, 11, 39}".
+std::string RangeText(const SettingInfo& info);
+
 struct Preset {
   std::string_view name;  // "high"
   std::vector<std::pair<std::string_view, double>> values;
