@@ -281,6 +281,23 @@ TEST(FxaaMiniEngineQueue, ACheckerboardFillsTheQueueWithoutOverflowOrLoss) {
   EXPECT_TRUE(CompareOutputs(queue.output, stencil.output).Identical()) << CompareOutputs(queue.output, stencil.output).Describe();
 }
 
+// FXAA.cpp dispatches W/2 x H/2 threads per quadrant: a screen one pixel wide or high launches no
+// group, and the frame comes back as its R11G11B10 target holds it (it used to fail a region check).
+TEST(FxaaMiniEngineQueue, AScreenOnePixelWideOrHighLaunchesNothing) {
+  for (const glm::ivec2 size : {glm::ivec2(1, 1), glm::ivec2(2, 1), glm::ivec2(1, 9), glm::ivec2(64, 1)}) {
+    const sim::Texture2D<glm::vec4> image =
+        testing::GreyImage(size.x, size.y, [](int x, int y) { return (x * 7 + y * 13) % 2 ? 200 : 10; });
+    for (const Strategy strategy : kAllStrategies) {
+      const FxaaRun run = RunFxaa(image, strategy);
+      EXPECT_TRUE(run.reports.empty()) << size.x << "x" << size.y;
+      EXPECT_EQ(run.output.workItems, 0u);
+      for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) EXPECT_EQ(Red(run.output, x, y), Stored(image.At(x, y).x)) << x << "," << y;
+      }
+    }
+  }
+}
+
 // Where a quadrant side is not a multiple of 8, MiniEngine's Dispatch2D launches whole groups
 // past it and pass 1 has no bounds check: on a 100x100 screen the quadrants classify 56x56,
 // 56x50, 50x56 and 50x50 pixels (clipped to the screen), the first three more than the 2628

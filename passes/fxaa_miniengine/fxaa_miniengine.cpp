@@ -235,6 +235,8 @@ class FxaaMiniEnginePass final : public Pass {
     for (int bx = 0; bx < 2; ++bx) {
       for (int by = 0; by < 2; ++by) {
         const WorkRegion region = QuadrantRegion(bx * blockWidth, by * blockHeight, blockWidth, blockHeight, width, height);
+        // A screen 1 pixel wide or high has empty blocks: Dispatch2D(0, ...) launches no group.
+        if (region.width <= 0 || region.height <= 0) continue;
         auto makeDetect = [&](sim::Dispatch& d, auto form) { return MakeDetect(d, form, region, colour, luma); };
         auto makeConsume = [&](sim::Dispatch& d, int consume) { return MakeConsume(d, consume == 1, colour, luma); };
         const WorkSetShape shape = workSet_.Run(machine, strategy, kernels, width, height, region, makeDetect, makeConsume);
