@@ -134,13 +134,7 @@ struct Cmaa2Run {
     throw std::logic_error("no layer");
   }
   std::uint64_t Counter(std::string_view dispatch, std::string_view name) const {
-    for (const sim::DispatchReport& report : reports) {
-      if (report.name != dispatch) continue;
-      for (const sim::PassCounter& counter : report.passCounters) {
-        if (counter.name == name) return counter.value;
-      }
-    }
-    throw std::logic_error("no counter " + std::string(name));
+    return testing::PassCounterValue(reports, dispatch, name);
   }
   std::uint64_t BytesWritten(std::string_view dispatch, std::string_view resource) const {
     for (const sim::DispatchReport& report : reports) {

@@ -42,13 +42,7 @@ struct SmaaRun {
                        static_cast<std::size_t>(channel));
   }
   std::uint64_t Counter(std::string_view dispatch, std::string_view name) const {
-    for (const sim::DispatchReport& report : reports) {
-      if (report.name != dispatch) continue;
-      for (const sim::PassCounter& counter : report.passCounters) {
-        if (counter.name == name) return counter.value;
-      }
-    }
-    throw std::logic_error("no counter " + std::string(name));
+    return testing::PassCounterValue(reports, dispatch, name);
   }
 };
 

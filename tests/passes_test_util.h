@@ -1,12 +1,17 @@
 #pragma once
-// Synthetic images for pass tests: grey levels given as 8-bit sRGB codes, stored linear (what an
-// 8-bit sRGB target decodes back to the same codes).
+// Helpers of the pass tests: synthetic images (grey levels given as 8-bit sRGB codes, stored
+// linear: what an 8-bit sRGB target decodes back to the same codes) and a pass counter's value.
 
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include <glm/vec4.hpp>
 
+#include "sim/dispatch.h"
 #include "sim/formats.h"
 #include "sim/resources.h"
 
@@ -23,6 +28,18 @@ inline sim::Texture2D<glm::vec4> GreyImage(int width, int height, const Codes& c
     }
   }
   return image;
+}
+
+// The value of pass counter `name` of the first report of `dispatch`; throws when there is none.
+inline std::uint64_t PassCounterValue(std::span<const sim::DispatchReport> reports, std::string_view dispatch,
+                                      std::string_view name) {
+  for (const sim::DispatchReport& report : reports) {
+    if (report.name != dispatch) continue;
+    for (const sim::PassCounter& counter : report.passCounters) {
+      if (counter.name == name) return counter.value;
+    }
+  }
+  throw std::logic_error("no counter " + std::string(name));
 }
 
 }  // namespace passes::testing
