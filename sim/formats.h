@@ -54,7 +54,12 @@ bool ViewCompatible(Format resource, Format view);
 // floor(255 x + 0.5) in exact arithmetic differs on 127 of those 255 ties.
 inline std::uint8_t FloatToUnorm8(float value) {
   if (std::isnan(value)) return 0;
-  return static_cast<std::uint8_t>(std::nearbyint(std::clamp(value, 0.0f, 1.0f) * 255.0f));
+  // Adding and removing 2^23 rounds a float in [0, 2^23) to an integer in the current rounding
+  // mode (to nearest, ties to even): std::nearbyint's result without its library call, which
+  // every 8-bit store and sRGB read would otherwise pay (SimFormats tests it against nearbyint).
+  constexpr float kRoundingBias = 8388608.0f;
+  const float product = std::clamp(value, 0.0f, 1.0f) * 255.0f;
+  return static_cast<std::uint8_t>((product + kRoundingBias) - kRoundingBias);
 }
 // D3D11 §3.2.3.5 (the code over 2^8 - 1) as llvmpipe computes it: k times float32(1 / 255),
 // which differs from the correctly rounded k / 255 by one ulp on 126 codes (measured as above).

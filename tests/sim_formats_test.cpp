@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -76,6 +77,27 @@ TEST(SimFormats, TexelTypesMustHoldEveryChannel) {
 // float32 product 255 x to nearest with ties to even. Every code maps back to itself; away from
 // ties a store is the nearest code; at a tie the even code wins (42.5 / 255 stores 42, as
 // llvmpipe was measured to: docs/smaa.md).
+// The store's rounding, inlined, against the library's nearbyint: every float within 4096 ulps of
+// every midpoint and every code, and every 97th float of [0, 1].
+TEST(SimFormats, Unorm8StoresRoundAsNearbyintDoes) {
+  const auto reference = [](float value) {
+    return static_cast<int>(std::nearbyint(std::clamp(value, 0.0f, 1.0f) * 255.0f));
+  };
+  for (int k = 0; k <= 510; ++k) {
+    float value = static_cast<float>(k / 510.0L);
+    for (int step = 0; step < 4096; ++step) value = std::nextafter(value, 0.0f);
+    for (int step = 0; step < 8192 && value <= 1.0f; ++step) {
+      ASSERT_EQ(static_cast<int>(FloatToUnorm8(value)), reference(value)) << value;
+      value = std::nextafter(value, 2.0f);
+    }
+  }
+  for (std::uint32_t bits = 0; bits <= 0x3F800000u; bits += 97) {
+    float value = 0.0f;
+    std::memcpy(&value, &bits, sizeof value);
+    ASSERT_EQ(static_cast<int>(FloatToUnorm8(value)), reference(value)) << value;
+  }
+}
+
 TEST(SimFormats, Unorm8StoresRoundToTheNearestCodeAtEveryCodeAndMidpoint) {
   const float reciprocal = 1.0f / 255.0f;
   for (int k = 0; k <= 255; ++k) {
