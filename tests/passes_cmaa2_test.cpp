@@ -128,11 +128,9 @@ struct Cmaa2Run {
   std::vector<sim::DispatchReport> reports;
 
   float Layer(std::string_view name, int x, int y) const {
-    for (const PassLayer& layer : output.layers) {
-      if (layer.name == name) return layer.values[static_cast<std::size_t>(y * layer.width + x)];
-    }
-    throw std::logic_error("no layer");
+    return testing::LayerValue(testing::LayerNamed(output, name), x, y);
   }
+
   std::uint64_t Counter(std::string_view dispatch, std::string_view name) const {
     return testing::PassCounterValue(reports, dispatch, name);
   }

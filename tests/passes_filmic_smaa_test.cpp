@@ -86,17 +86,8 @@ PassOutput RunPass(std::string_view spec, const sim::Texture2D<glm::vec4>& image
   return ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image}, strategy);
 }
 
-const PassLayer& LayerNamed(const PassOutput& output, std::string_view name) {
-  for (const PassLayer& layer : output.layers) {
-    if (layer.name == name) return layer;
-  }
-  throw std::logic_error("no layer " + std::string(name));
-}
-float At(const PassLayer& layer, int x, int y, int channel = 0) {
-  return layer.values.at((static_cast<std::size_t>(y) * static_cast<std::size_t>(layer.width) + static_cast<std::size_t>(x)) *
-                             layer.channels.size() +
-                         static_cast<std::size_t>(channel));
-}
+using testing::LayerNamed;
+float At(const PassLayer& layer, int x, int y, int channel = 0) { return testing::LayerValue(layer, x, y, channel); }
 float LeftEdge(const PassOutput& output, int x, int y) { return At(LayerNamed(output, "edges"), x, y, 0); }
 
 // Seed 000's failure case of local contrast adaptation: a weak edge near a strong one. A weak

@@ -33,16 +33,9 @@ constexpr int kDark = 40, kWhite = 221;
 struct MlaaRun {
   PassOutput output;
 
-  const PassLayer& Layer(std::string_view name) const {
-    for (const PassLayer& layer : output.layers) {
-      if (layer.name == name) return layer;
-    }
-    throw std::logic_error("no layer " + std::string(name));
-  }
+  const PassLayer& Layer(std::string_view name) const { return testing::LayerNamed(output, name); }
   float At(std::string_view layer, int x, int y, int channel) const {
-    const PassLayer& l = Layer(layer);
-    const std::size_t index = static_cast<std::size_t>(y) * static_cast<std::size_t>(l.width) + static_cast<std::size_t>(x);
-    return l.values.at(index * l.channels.size() + static_cast<std::size_t>(channel));
+    return testing::LayerValue(Layer(layer), x, y, channel);
   }
   int Code(int x, int y) const { return sim::FloatToSrgb8(output.colour.At(x, y).r); }
 };

@@ -28,18 +28,9 @@ struct SmaaRun {
   PassOutput output;
   std::vector<sim::DispatchReport> reports;
 
-  const PassLayer& Layer(std::string_view name) const {
-    for (const PassLayer& layer : output.layers) {
-      if (layer.name == name) return layer;
-    }
-    throw std::logic_error("no layer " + std::string(name));
-  }
+  const PassLayer& Layer(std::string_view name) const { return testing::LayerNamed(output, name); }
   float At(std::string_view layer, int x, int y, int channel) const {
-    const PassLayer& l = Layer(layer);
-    const std::size_t channels = l.channels.size();
-    return l.values.at((static_cast<std::size_t>(y) * static_cast<std::size_t>(l.width) + static_cast<std::size_t>(x)) *
-                           channels +
-                       static_cast<std::size_t>(channel));
+    return testing::LayerValue(Layer(layer), x, y, channel);
   }
   std::uint64_t Counter(std::string_view dispatch, std::string_view name) const {
     return testing::PassCounterValue(reports, dispatch, name);

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers of the pass tests: synthetic images (grey levels given as 8-bit sRGB codes, stored
-// linear: what an 8-bit sRGB target decodes back to the same codes) and a pass counter's value.
+// linear: what an 8-bit sRGB target decodes back to the same codes), a pass counter's value and a
+// layer's values.
 
 #include <cstdint>
 #include <functional>
@@ -11,6 +12,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "passes/pass.h"
 #include "sim/dispatch.h"
 #include "sim/formats.h"
 #include "sim/resources.h"
@@ -40,6 +42,20 @@ inline std::uint64_t PassCounterValue(std::span<const sim::DispatchReport> repor
     }
   }
   throw std::logic_error("no counter " + std::string(name));
+}
+
+// The output layer called `name`; throws when there is none.
+inline const PassLayer& LayerNamed(const PassOutput& output, std::string_view name) {
+  for (const PassLayer& layer : output.layers) {
+    if (layer.name == name) return layer;
+  }
+  throw std::logic_error("no layer " + std::string(name));
+}
+
+// Channel `channel` of the layer at (x, y).
+inline float LayerValue(const PassLayer& layer, int x, int y, int channel = 0) {
+  const std::size_t pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(layer.width) + static_cast<std::size_t>(x);
+  return layer.values.at(pixel * layer.channels.size() + static_cast<std::size_t>(channel));
 }
 
 }  // namespace passes::testing
