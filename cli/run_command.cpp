@@ -74,7 +74,7 @@ void PrintSummary(std::ostream& out, const Study& study, const RunCommandOptions
   out << "quality against the ground truth\n" << header;
   for (const StudyFrame& frame : study.frames) {
     PrintQuality(out, frame.image);
-    if (frame.fetchResolve) PrintQuality(out, *frame.fetchResolve);
+    for (const study::StudyResolve& resolve : frame.resolves) PrintQuality(out, resolve.image);
     if (frame.srgb8) PrintQuality(out, *frame.srgb8);
   }
   for (const StudyPass& pass : study.passes) PrintQuality(out, pass.image);

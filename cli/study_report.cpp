@@ -26,6 +26,7 @@ using study::ScoredImage;
 using study::StudyGroundTruth;
 using study::StudyPass;
 using study::StudyPassRun;
+using study::StudyResolve;
 
 // Previews at most this wide keep report.html a few MB at 1080p; full images are in images/.
 constexpr int kPreviewMaxWidth = 960;
@@ -132,6 +133,17 @@ double PassMicroseconds(const Study& study, const StudyPassRun& run) {
   return total;
 }
 
+nlohmann::ordered_json ResolvesJson(const StudyFrame& frame) {
+  nlohmann::ordered_json resolves = nlohmann::ordered_json::array();
+  for (const StudyResolve& resolve : frame.resolves) {
+    resolves.push_back({{"name", resolve.name},
+                        {"folder", kImages + resolve.image.folder},
+                        {"dispatches", IndexRange(resolve.firstDispatch, resolve.endDispatch)},
+                        {"quality", QualityJson(resolve.image.quality.scores)}});
+  }
+  return resolves;
+}
+
 nlohmann::ordered_json FrameJson(const StudyFrame& frame, const RunCommandOptions& options) {
   return {{"mode", frame.image.label},
           {"samples", frame.mode.coverageSamples},
@@ -142,9 +154,8 @@ nlohmann::ordered_json FrameJson(const StudyFrame& frame, const RunCommandOption
           {"folder", kImages + frame.image.folder},
           {"draw_dispatch", frame.drawDispatch},
           {"quality", QualityJson(frame.image.quality.scores)},
-          {"fetch_resolve", frame.fetchResolve ? nlohmann::ordered_json{{"folder", kImages + frame.fetchResolve->folder},
-                                                                        {"quality", QualityJson(frame.fetchResolve->quality.scores)}}
-                                               : nlohmann::ordered_json(nullptr)},
+          {"resolve_dispatch", frame.drawDispatch + 1},
+          {"resolves", ResolvesJson(frame)},
           {"srgb8", frame.srgb8 ? nlohmann::ordered_json{{"folder", kImages + frame.srgb8->folder},
                                                          {"quality", QualityJson(frame.srgb8->quality.scores)}}
                                 : nlohmann::ordered_json(nullptr)},
@@ -197,7 +208,7 @@ std::string QualityCsv(const Study& study) {
   };
   for (const StudyFrame& frame : study.frames) {
     row(frame.image, "frame");
-    if (frame.fetchResolve) row(*frame.fetchResolve, "fetch resolve");
+    for (const StudyResolve& resolve : frame.resolves) row(resolve.image, "resolve");
     if (frame.srgb8) row(*frame.srgb8, "frame sRGB8");
   }
   for (const StudyPass& pass : study.passes) row(pass.image, "pass");
@@ -225,7 +236,9 @@ std::vector<Shown> ShownImages(const Study& study, const sim::Texture2D<glm::vec
                             &truth, nullptr}};
   for (const StudyFrame& frame : study.frames) {
     shown.push_back({frame.image.label, &frame.image.colour, &frame.image});
-    if (frame.fetchResolve) shown.push_back({frame.fetchResolve->label, &frame.fetchResolve->colour, &*frame.fetchResolve});
+    for (const StudyResolve& resolve : frame.resolves) {
+      shown.push_back({resolve.image.label, &resolve.image.colour, &resolve.image});
+    }
     if (frame.srgb8) shown.push_back({frame.srgb8->label, &frame.srgb8->colour, &*frame.srgb8});
   }
   for (const StudyPass& pass : study.passes) {
@@ -263,8 +276,10 @@ ReportSection ImagesSection(const std::vector<Shown>& shown, int width, int heig
   const int factor = PreviewFactor(width, kPreviewMaxWidth);
   ReportSection section{"Images", {}, {}, {}, {}};
   section.paragraphs.push_back(
-      "A mode's image is the colour block's box resolve (UNKNOWN samples dropped); \"fetch\" is the shader "
-      "resolve of an EQAA surface through the fetch path (UNKNOWN samples read fragment 0), computed on the host.");
+      "A mode's image is its box resolve (UNKNOWN samples dropped); the images named after a resolve are that "
+      "resolve of the same surface (\"fetch\": the shader fetch path, UNKNOWN samples reading fragment 0; "
+      "\"craa-simple\", \"craa-lut\": seed 001's coverage reconstruction of 1F surfaces). All are dispatches on "
+      "the machine; the EQAA study below compares them.");
   section.paragraphs.push_back(factor == 1 ? "Full resolution."
                                            : "Previews averaged over " + std::to_string(factor) + "x" +
                                                  std::to_string(factor) + " pixels; the hardest regions below are "
@@ -561,9 +576,9 @@ void StageFrameFiles(OutputDir& dir, const StudyFrame& frame, const sim::FramePi
   WriteEqaaExr(dir.Stage(folder + "eqaa.exr"), planes);
   WritePng(dir.Stage(folder + "fmask.png"), planes.width, planes.height, 3, FmaskImage(planes));
   StageErrorFiles(dir, frame.image);
-  if (frame.fetchResolve) {
-    StageColour(dir, kImages + frame.fetchResolve->folder + "/colour.png", frame.fetchResolve->colour);
-    StageErrorFiles(dir, *frame.fetchResolve);
+  for (const StudyResolve& resolve : frame.resolves) {
+    StageColour(dir, kImages + resolve.image.folder + "/colour.png", resolve.image.colour);
+    StageErrorFiles(dir, resolve.image);
   }
   if (frame.srgb8) {
     StageColour(dir, kImages + frame.srgb8->folder + "/colour.png", frame.srgb8->colour);

@@ -8,7 +8,8 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
+
+#include "sim/eqaa_resolve.h"
 
 namespace sim {
 
@@ -181,13 +182,6 @@ DispatchReport FramePipeline::Render(const FrameGeometry& geometry, const FrameP
   return report;
 }
 
-void FramePipeline::Resolve() {
-  tbb::parallel_for(0, settings_.height, [&](int y) {
-    for (int x = 0; x < settings_.width; ++x) {
-      const fmask::Colour c = eqaa_.BoxResolve(x, y);
-      colour_.At(x, y) = {c.r, c.g, c.b, c.a};
-    }
-  });
-}
+void FramePipeline::Resolve() { RunBoxResolve(machine_, eqaa_, colour_, "frame/resolve"); }
 
 }  // namespace sim

@@ -1,8 +1,9 @@
 #pragma once
 // The frame pipeline: geometry -> draw -> the material pixel kernel (Lambert + base colour) ->
 // EQAA surface, plus pixel-rate targets for the post passes (depth, normal, object id,
-// velocity), then the CB box resolve into a single-sample colour texture. Post passes
-// (passes/) take the targets from here; every dispatch lands in the Machine's report list.
+// velocity), then the box resolve (the dispatch "frame/resolve", sim/eqaa_resolve.h) into a
+// single-sample colour texture. Post passes (passes/) take the targets from here; every dispatch
+// lands in the Machine's report list.
 //
 // Pixel-rate targets keep the fragment that last passed coverage sample 0 of the pixel, the
 // sample an MSAA G-buffer read at sample 0 returns, so they are defined for every S.

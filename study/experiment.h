@@ -11,6 +11,7 @@
 
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
+#include "passes/resolve.h"
 #include "sim/wave.h"
 
 namespace study {
@@ -32,6 +33,10 @@ struct ExperimentConfig {
   std::string gpu;               // built-in name or file
   sim::WaveFlush flush = sim::WaveFlush::MixPrimitives;
   std::vector<passes::PassConfig> passes;
+  // Resolves (passes/resolve.h) run on every mode they read, besides the frame's box resolve.
+  std::vector<std::string> resolves = passes::ResolveNames();
+  // Where tables resolves derive from the sample pattern (the CRAA LUT) are cached between runs.
+  std::optional<std::filesystem::path> tableCache;
   // The strategies every pass runs under, among those it declares; empty = all it declares.
   std::vector<passes::Strategy> strategies;
   GroundTruthConfig groundTruth;

@@ -85,22 +85,6 @@ passes::QualityResult ScoreAgainstGroundTruth(const sim::Texture2D<glm::vec4>& i
   return result;
 }
 
-sim::Texture2D<glm::vec4> FetchResolve(const fmask::EqaaSurface& surface) {
-  sim::Texture2D<glm::vec4> resolved("fetch resolve", surface.Width(), surface.Height());
-  const int samples = surface.Config().coverageSamples;
-  tbb::parallel_for(0, surface.Height(), [&](int y) {
-    for (int x = 0; x < surface.Width(); ++x) {
-      glm::vec4 sum(0.0f);
-      for (int s = 0; s < samples; ++s) {
-        const fmask::Colour c = surface.FetchSample(x, y, s);
-        sum += glm::vec4(c.r, c.g, c.b, c.a);
-      }
-      resolved.At(x, y) = sum / static_cast<float>(samples);
-    }
-  });
-  return resolved;
-}
-
 sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentConfig& config, std::size_t mode) {
   sim::FrameSettings settings;
   settings.width = config.width;
@@ -150,12 +134,7 @@ class StudyRunner {
     frame.fragments = pipeline.Fragments();
     frame.image.quality =
         Step(observer_, "metrics " + label, [&] { return ScoreAgainstGroundTruth(frame.image.colour, study_.groundTruth); });
-    if (frame.mode.fragments < frame.mode.coverageSamples) {
-      ScoredImage fetch{label + " fetch", frame.image.folder + "/fetch", FetchResolve(pipeline.Eqaa()), {}};
-      fetch.quality =
-          Step(observer_, "metrics " + fetch.label, [&] { return ScoreAgainstGroundTruth(fetch.colour, study_.groundTruth); });
-      frame.fetchResolve = std::move(fetch);
-    }
+    RunResolves(mode, pipeline, frame);
     if (FeedsAPass(mode)) {
       ScoredImage srgb8{label + " sRGB8", frame.image.folder + "/srgb8",
                         passes::DecodedSrgb8("frame sRGB8", passes::Srgb8ColourTarget("frame sRGB8", pipeline.Colour())), {}};
@@ -168,6 +147,25 @@ class StudyRunner {
       if (PassFrame(config_, pass.Info()) == mode) RunPass(pass, pipeline, label);
     }
     study_.frames.push_back(std::move(frame));
+  }
+
+  void RunResolves(std::size_t mode, const sim::FramePipeline& pipeline, StudyFrame& frame) {
+    const passes::ResolveContext context{.pattern = &inputs_.patterns[mode], .tableCache = config_.tableCache};
+    for (const std::string& name : config_.resolves) {
+      const passes::RegisteredResolve& registered = passes::ResolveByName(name);
+      if (!registered.info().reads(frame.mode)) continue;
+      StudyResolve resolve{.name = name,
+                           .image = {frame.image.label + " " + name, frame.image.folder + "/" + name, {"resolve", 1, 1}, {}},
+                           .firstDispatch = study_.dispatches.size()};
+      const std::unique_ptr<passes::Resolve> kernel =
+          Step(observer_, "table " + frame.image.label + " " + name, [&] { return registered.make(context); });
+      resolve.image.colour = Step(observer_, "resolve " + resolve.image.label, [&] { return kernel->Run(machine_, pipeline.Eqaa()); });
+      TakeDispatches(machine_, study_.dispatches, frame.image.label);
+      resolve.endDispatch = study_.dispatches.size();
+      resolve.image.quality = Step(observer_, "metrics " + resolve.image.label,
+                                   [&] { return ScoreAgainstGroundTruth(resolve.image.colour, study_.groundTruth); });
+      frame.resolves.push_back(std::move(resolve));
+    }
   }
 
   bool FeedsAPass(std::size_t mode) const {
@@ -275,6 +273,7 @@ StudyInputs LoadStudyInputs(const ExperimentConfig& config) {
   for (const fmask::EqaaConfig& mode : config.modes) {
     inputs.patterns.push_back(raster::ResolvePattern(config.pattern, mode.coverageSamples));
   }
+  for (const std::string& resolve : config.resolves) passes::ResolveByName(resolve);
   return inputs;
 }
 

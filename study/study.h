@@ -37,13 +37,19 @@ struct ScoredImage {
   passes::QualityResult quality;
 };
 
+// One registered resolve (passes/resolve.h) of a frame's EQAA surface.
+struct StudyResolve {
+  std::string name;  // "craa-lut"
+  ScoredImage image;
+  std::size_t firstDispatch = 0, endDispatch = 0;  // [first, end) in Study::dispatches
+};
+
 struct StudyFrame {
   fmask::EqaaConfig mode;
-  ScoredImage image;  // the colour block's box resolve (UNKNOWN samples dropped, hw-facts §1.6)
-  // EQAA modes (F < S) only: the shader resolve through the fetch path, the mean of every
-  // sample's FetchSample (UNKNOWN reads fragment 0, hw-facts §1.4). Computed on the host from the
-  // surface, not run as a dispatch.
-  std::optional<ScoredImage> fetchResolve{};
+  // The frame's box resolve (UNKNOWN samples dropped, hw-facts §1.6), the dispatch after the draw.
+  ScoredImage image;
+  // Every resolve of ExperimentConfig::resolves that reads this mode, in registry order.
+  std::vector<StudyResolve> resolves{};
   // Frames post passes read: the colour as an 8-bit sRGB target holds it (what the passes start
   // from, passes::Srgb8ColourTarget), so a pass is compared with its own input's quantisation.
   std::optional<ScoredImage> srgb8{};

@@ -185,7 +185,7 @@ TEST_F(CliFrameTest, JsonHasTheSchemaEveryDispatchAndLanesThatAddUp) {
     EXPECT_EQ(launched, 64 * c["waves/launched"].get<std::uint64_t>()) << dispatch["name"];
     EXPECT_TRUE(dispatch["time_estimate_us"]["total"].is_number());
   }
-  EXPECT_EQ(dispatches, (std::vector<std::string>{"frame/material", "demo/edge-detect@stencil",
+  EXPECT_EQ(dispatches, (std::vector<std::string>{"frame/material", "frame/resolve", "demo/edge-detect@stencil",
                                                   "demo/blend@stencil", "demo/edge-detect@queue",
                                                   "demo/queue-args@queue", "demo/blend@queue"}));
   EXPECT_TRUE(json["dispatches"][0].contains("raster"));
@@ -230,7 +230,7 @@ TEST_F(CliFrameTest, EveryDispatchWithAHeatMapHasBothFiles) {
   ASSERT_EQ(run_.exitCode, 0) << run_.err;
   const std::vector<std::string> heat = FilesIn(Out() / "heat");
   EXPECT_TRUE(std::find(heat.begin(), heat.end(), "0-frame-material.exr") != heat.end());
-  EXPECT_TRUE(std::find(heat.begin(), heat.end(), "2-demo-blend-stencil.png") != heat.end());
+  EXPECT_TRUE(std::find(heat.begin(), heat.end(), "3-demo-blend-stencil.png") != heat.end());
   for (const std::string& name : heat) {
     const fs::path path(name);
     const std::string other = path.stem().string() + (path.extension() == ".exr" ? ".png" : ".exr");
@@ -268,7 +268,8 @@ TEST_F(CliFrameTest, OneStrategyAndNoPostRunOnlyWhatWasAskedFor) {
   ASSERT_EQ(none.exitCode, 0) << none.err;
   EXPECT_FALSE(fs::exists(scratch_ / "none/post"));
   const nlohmann::json json = nlohmann::json::parse(ReadText(scratch_ / "none/dispatches.json"));
-  EXPECT_EQ(json["dispatches"].size(), 1u);
+  // The frame's draw and its box resolve.
+  EXPECT_EQ(json["dispatches"].size(), 2u);
 }
 
 // `aasim frame --post NAME` reaches every registered pass through the registry, both strategies

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "passes/registry.h"
+#include "passes/resolve.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -150,8 +151,11 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
                 report["passes"][0]["strategies"][1]["dispatches"].size(),
             5u);
   const nlohmann::json& dispatches = report["dispatches"]["dispatches"];
-  // One material draw per mode, then the passes' dispatches.
-  ASSERT_EQ(dispatches.size(), std::size(kModes) + passDispatches);
+  // Per mode the material draw, the box resolve and the registered resolves reading the mode,
+  // then the passes' dispatches.
+  std::size_t resolveDispatches = 0;
+  for (const nlohmann::json& frame : report["frames"]) resolveDispatches += frame["resolves"].size();
+  ASSERT_EQ(dispatches.size(), 2 * std::size(kModes) + resolveDispatches + passDispatches);
   const std::string counters = ReadText(Out() / "counters.csv");
   EXPECT_EQ(counters.rfind("frame,name,kind,strategy,", 0), 0u) << counters.substr(0, 80);
   EXPECT_EQ(CountLines(counters), dispatches.size() + 1);
@@ -168,14 +172,24 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
   EXPECT_FALSE(report["frames"][0]["srgb8"].is_null());
   EXPECT_TRUE(report["frames"][1]["srgb8"].is_null());
   EXPECT_NE(quality.find("\n16S/8Z/4F,frame,"), std::string::npos) << quality;
-  EXPECT_NE(quality.find("\n8S/4Z/2F fetch,fetch resolve,"), std::string::npos) << quality;
+  EXPECT_NE(quality.find("\n8S/4Z/2F fetch,resolve,"), std::string::npos) << quality;
+  // Every registered resolve that reads a mode ran on it, in registry order, as its own dispatches.
   for (std::size_t i = 0; i < std::size(kModes); ++i) {
     const nlohmann::json& frame = report["frames"][i];
-    const bool eqaa = frame["fragments"].get<int>() < frame["samples"].get<int>();
-    EXPECT_EQ(frame["fetch_resolve"].is_null(), !eqaa) << kModes[i];
-    if (eqaa) {
-      EXPECT_TRUE(fs::is_regular_file(Out() / frame["fetch_resolve"]["folder"].get<std::string>() / "error.exr"));
+    const fmask::EqaaConfig mode{frame["samples"].get<int>(), frame["depth_samples"].get<int>(),
+                                 frame["fragments"].get<int>()};
+    std::vector<std::string> expected, ran;
+    for (const passes::RegisteredResolve& resolve : passes::AllResolves()) {
+      if (resolve.info().reads(mode)) expected.emplace_back(resolve.info().name);
     }
+    for (const nlohmann::json& resolve : frame["resolves"]) {
+      ran.push_back(resolve["name"].get<std::string>());
+      EXPECT_TRUE(fs::is_regular_file(Out() / resolve["folder"].get<std::string>() / "error.exr"));
+      const nlohmann::json& first = dispatches[resolve["dispatches"][0].get<std::size_t>()];
+      EXPECT_EQ(first["name"].get<std::string>().rfind("resolve/" + ran.back(), 0), 0u) << first["name"];
+    }
+    EXPECT_EQ(ran, expected) << kModes[i];
+    EXPECT_EQ(dispatches[frame["resolve_dispatch"].get<std::size_t>()]["name"], "frame/resolve");
   }
 }
 
