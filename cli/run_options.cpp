@@ -11,6 +11,7 @@
 #include "cli/common_options.h"
 #include "cli/frame_options.h"
 #include "passes/registry.h"
+#include "passes/resolve.h"
 
 namespace cli {
 namespace {
@@ -94,6 +95,19 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
       ->check(CLI::IsMember(fmask::PolicyNames()))
       ->capture_default_str();
   command
+      .add_option("--compare-policies", options.comparePolicies,
+                  "Further arbitration policies, comma-separated, under which every EQAA mode (F < S) is drawn "
+                  "again and resolved, for the EQAA study's policy column: " + JoinNames(fmask::PolicyNames()) +
+                      ", all (every policy but --policy) or none; post passes run only on --policy's frames")
+      ->type_name("LIST")
+      ->capture_default_str();
+  command
+      .add_option("--resolves", options.resolves,
+                  "Resolves of the EQAA surface run on every mode they read, besides the frame's box resolve, "
+                  "comma-separated: " + JoinNames(passes::ResolveNames()) + ", all or none (docs/craa.md)")
+      ->type_name("LIST")
+      ->capture_default_str();
+  command
       .add_option("--post", options.post,
                   "Post passes, comma-separated, each NAME[:key=value,...], run under every dispatch "
                   "strategy they have: " +
@@ -159,6 +173,35 @@ void CheckMemory(const RunCommandOptions& options) {
                                ": needs about " + FormatGiB(bytes) + " GiB, over the " +
                                FormatGiB(kMaxRunBytes) + " GiB limit");
   }
+}
+
+}  // namespace
+
+namespace {
+
+// "all" (every name but `excluded`), "none", or a list of distinct legal names other than `excluded`.
+std::vector<std::string> ParseNameList(const std::string& option, std::string_view list,
+                                       const std::vector<std::string>& legal, const std::string& excluded) {
+  std::vector<std::string> names;
+  if (list == "none") return names;
+  if (list == "all") {
+    for (const std::string& name : legal) {
+      if (name != excluded) names.push_back(name);
+    }
+    return names;
+  }
+  for (const std::string_view item : SplitList(list)) {
+    const std::string name(item);
+    if (std::find(legal.begin(), legal.end(), name) == legal.end()) {
+      throw CLI::ValidationError(option + ": unknown name '" + name + "' (" + JoinNames(legal) + ", all or none)");
+    }
+    if (name == excluded) throw CLI::ValidationError(option + ": " + name + " is already the run's --policy");
+    if (std::find(names.begin(), names.end(), name) != names.end()) {
+      throw CLI::ValidationError(option + ": " + name + " is named twice");
+    }
+    names.push_back(name);
+  }
+  return names;
 }
 
 }  // namespace
@@ -229,6 +272,9 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
   }
   CheckGroundTruthSamples(options.groundTruthSamples);
   options.eqaaModes = ParseEqaaModes(options.modes);
+  options.resolveNames = ParseNameList("--resolves", options.resolves, passes::ResolveNames(), {});
+  options.comparedPolicies = ParseNameList("--compare-policies", options.comparePolicies, fmask::PolicyNames(),
+                                           options.policy);
   options.postPasses = ResolvePasses(options.post);
   KeepPassesTheModesFeed(options);
   options.strategies.clear();
@@ -256,12 +302,17 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.modes = options.eqaaModes;
   config.pattern = options.pattern;
   config.policy = options.policy;
+  config.comparedPolicies = options.comparedPolicies;
+  config.resolves = options.resolveNames;
   config.gpu = options.gpu;
   config.flush = WaveFlushByName(options.flush);
   config.passes = options.postPasses;
   config.strategies = options.strategies;
   config.groundTruth.samplesPerPixel = options.groundTruthSamples;
-  if (!options.noCache) config.groundTruth.cache = options.cache;
+  if (!options.noCache) {
+    config.groundTruth.cache = options.cache;
+    config.tableCache = std::filesystem::path(options.cache) / "tables";
+  }
   return config;
 }
 

@@ -24,9 +24,10 @@ inline constexpr int kQuickHeight = 360;
 inline constexpr int kQuickGroundTruthSamples = 64;
 
 // 1S/1Z/1F first: the aliased frame the post passes work on, and the baseline every mode is
-// compared with; then MSAA 4x, the EQAA mode of the HRAA talk's examples (seed 001), and 16x
-// EQAA with 8 anchors and 4 fragments.
-inline constexpr std::string_view kDefaultModes = "1S/1Z/1F,4S/4Z/4F,8S/4Z/2F,16S/8Z/4F";
+// compared with; then the EQAA study of issue 14: 8x MSAA, 8x EQAA with 4 and 2 fragments (the
+// HRAA talk's examples, seed 001), 8x CRAA (1F), 16x EQAA and 16x CRAA, and 4x CRAA.
+inline constexpr std::string_view kDefaultModes =
+    "1S/1Z/1F,8S/8Z/8F,8S/8Z/4F,8S/4Z/2F,8S/8Z/1F,16S/8Z/4F,16S/8Z/1F,4S/4Z/1F";
 
 enum class ProgressMode : std::uint8_t { Auto, Always, Never };
 
@@ -38,6 +39,8 @@ struct RunCommandOptions {
   std::string modes = std::string(kDefaultModes);
   std::string pattern = "eqaa";
   std::string policy = "hraa";
+  std::string resolves = "all";          // registered resolves run on the modes they read
+  std::string comparePolicies = "none";  // further policies the EQAA modes are drawn under
   std::string gpu;  // default set by AddRunCommand (AddMachineOptions)
   std::string flush = "mix";
   std::string post = "all";
@@ -53,6 +56,8 @@ struct RunCommandOptions {
   std::vector<fmask::EqaaConfig> eqaaModes;
   std::vector<passes::PassConfig> postPasses;
   std::vector<passes::Strategy> strategies;  // empty = every strategy each pass declares
+  std::vector<std::string> resolveNames;
+  std::vector<std::string> comparedPolicies;
   ProgressMode progressMode = ProgressMode::Auto;
 };
 

@@ -11,9 +11,11 @@
 #include "cli/counters_json.h"
 #include "cli/dispatch_output.h"
 #include "cli/eqaa_output.h"
+#include "cli/eqaa_study_report.h"
 #include "cli/frame_output.h"
 #include "cli/image_io.h"
 #include "cli/number_format.h"
+#include "cli/report_json.h"
 #include "cli/report_images.h"
 #include "cli/text_io.h"
 #include "passes/registry.h"
@@ -110,17 +112,6 @@ void StageHeatMaps(OutputDir& dir, const Study& study) {
 
 // ---- report.json and the CSV files -------------------------------------------------------------
 
-nlohmann::ordered_json Number(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
-}
-
-nlohmann::ordered_json QualityJson(const passes::QualityScores& s) {
-  return {{"psnr_db", Number(s.psnr)},          {"ssim", Number(s.ssim)},
-          {"flip", Number(s.flip)},             {"edge_psnr_db", Number(s.edgePsnr)},
-          {"edge_ssim", Number(s.edgeSsim)},    {"edge_flip", Number(s.edgeFlip)},
-          {"edge_pixels", s.edgePixels}};
-}
-
 nlohmann::ordered_json IndexRange(std::size_t first, std::size_t end) {
   nlohmann::ordered_json indices = nlohmann::ordered_json::array();
   for (std::size_t i = first; i < end; ++i) indices.push_back(i);
@@ -150,7 +141,7 @@ nlohmann::ordered_json FrameJson(const StudyFrame& frame, const RunCommandOption
           {"depth_samples", frame.mode.depthSamples},
           {"fragments", frame.mode.fragments},
           {"pattern", options.pattern},
-          {"policy", options.policy},
+          {"policy", frame.policy},
           {"folder", kImages + frame.image.folder},
           {"draw_dispatch", frame.drawDispatch},
           {"quality", QualityJson(frame.image.quality.scores)},
@@ -596,6 +587,8 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"modes", modes},
           {"pattern", options.pattern},
           {"policy", options.policy},
+          {"compared_policies", options.comparedPolicies},
+          {"resolves", options.resolveNames},
           {"gpu", options.gpu},
           {"flush", options.flush},
           {"post", PassNamesJson(options.postPasses)},
@@ -623,6 +616,7 @@ nlohmann::ordered_json StudyJson(const Study& study, const RunCommandOptions& op
                   "truth's edge pixels; null = infinite (identical) PSNR or no edge pixels; docs/metrics.md"},
       {"frames", nlohmann::ordered_json::array()},
       {"passes", nlohmann::ordered_json::array()},
+      {"eqaa_study", EqaaStudyJson(study)},
       {"dispatches", DispatchReportsJson(study.dispatches, study.gpu, nlohmann::ordered_json::object())},
       {"host_seconds", study.hostSeconds},
   };
@@ -642,6 +636,7 @@ Report StudyHtml(const Study& study, const RunCommandOptions& options) {
   report.sections.push_back(QualitySection(shown));
   report.sections.push_back(ErrorMapsSection(shown, width, height));
   report.sections.push_back(FramesSection(study));
+  report.sections.push_back(EqaaStudySection(study));
   if (!study.passes.empty()) report.sections.push_back(PassesComparedSection(study));
   for (const StudyPass& pass : study.passes) report.sections.push_back(PassSection(study, pass));
   report.sections.push_back(DispatchesSection(study));

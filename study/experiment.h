@@ -30,6 +30,9 @@ struct ExperimentConfig {
   std::vector<fmask::EqaaConfig> modes;
   std::string pattern = "eqaa";  // built-in pattern name or file, resolved for each mode's S
   std::string policy = "hraa";   // fragment arbitration policy (docs/eqaa.md)
+  // Further policies under which every EQAA mode (F < S) is drawn again and resolved, for the EQAA
+  // study's policy column; no post pass runs on those frames.
+  std::vector<std::string> comparedPolicies;
   std::string gpu;               // built-in name or file
   sim::WaveFlush flush = sim::WaveFlush::MixPrimitives;
   std::vector<passes::PassConfig> passes;

@@ -85,13 +85,14 @@ passes::QualityResult ScoreAgainstGroundTruth(const sim::Texture2D<glm::vec4>& i
   return result;
 }
 
-sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentConfig& config, std::size_t mode) {
+sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentConfig& config, std::size_t mode,
+                                    const std::string& policy) {
   sim::FrameSettings settings;
   settings.width = config.width;
   settings.height = config.height;
   settings.eqaa = config.modes[mode];
   settings.pattern = inputs.patterns[mode];
-  settings.policy = fmask::PolicyByName(config.policy);
+  settings.policy = fmask::PolicyByName(policy);
   settings.flush = config.flush;
   ApplyLighting(inputs.scene.lighting, settings);
   return settings;
@@ -110,6 +111,11 @@ class StudyRunner {
     study_.groundTruth =
         Step(observer_, GroundTruthStep(), [&] { return RenderGroundTruth(inputs_, config_, observer_); });
     for (std::size_t mode = 0; mode < config_.modes.size(); ++mode) RunMode(mode);
+    for (const std::string& policy : config_.comparedPolicies) {
+      for (std::size_t mode = 0; mode < config_.modes.size(); ++mode) {
+        if (config_.modes[mode].fragments < config_.modes[mode].coverageSamples) RunComparedPolicy(mode, policy);
+      }
+    }
     study_.hostSeconds = SecondsSince(start);
     return std::move(study_);
   }
@@ -121,20 +127,39 @@ class StudyRunner {
            (config_.groundTruth.cache ? " (cache: " + config_.groundTruth.cache->string() + ")" : "");
   }
 
-  void RunMode(std::size_t mode) {
-    const fmask::EqaaConfig& eqaa = config_.modes[mode];
-    const std::string label = fmask::EqaaName(eqaa);
-    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode));
-    StudyFrame frame{.mode = eqaa,
-                     .image = {label, "frames/" + ModeSlug(eqaa), {"frame colour", 1, 1}, {}},
+  // Draws the scene under the pipeline's mode and policy, scores its box resolve, runs the resolves.
+  StudyFrame DrawFrame(std::size_t mode, const std::string& label, const std::string& folder,
+                       sim::FramePipeline& pipeline) {
+    StudyFrame frame{.mode = config_.modes[mode],
+                     .policy = pipeline.Settings().policy.name,
+                     .image = {label, folder, {"frame colour", 1, 1}, {}},
                      .drawDispatch = study_.dispatches.size()};
     Step(observer_, "frame " + label, [&] { pipeline.Render(inputs_.frame.Geometry()); });
     TakeDispatches(machine_, study_.dispatches, label);
     frame.image.colour = pipeline.Colour();
     frame.fragments = pipeline.Fragments();
+    frame.unknown = CountUnknownSamples(pipeline.Eqaa());
     frame.image.quality =
         Step(observer_, "metrics " + label, [&] { return ScoreAgainstGroundTruth(frame.image.colour, study_.groundTruth); });
     RunResolves(mode, pipeline, frame);
+    return frame;
+  }
+
+  void RunComparedPolicy(std::size_t mode, const std::string& policy) {
+    const fmask::EqaaConfig& eqaa = config_.modes[mode];
+    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode, policy));
+    StudyFrame frame = DrawFrame(mode, fmask::EqaaName(eqaa) + " " + policy, "frames/" + ModeSlug(eqaa) + "-" + policy,
+                                 pipeline);
+    frame.comparedPolicy = true;
+    if (observer_.frameDone) observer_.frameDone(frame, pipeline);
+    study_.frames.push_back(std::move(frame));
+  }
+
+  void RunMode(std::size_t mode) {
+    const fmask::EqaaConfig& eqaa = config_.modes[mode];
+    const std::string label = fmask::EqaaName(eqaa);
+    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode, config_.policy));
+    StudyFrame frame = DrawFrame(mode, label, "frames/" + ModeSlug(eqaa), pipeline);
     if (FeedsAPass(mode)) {
       ScoredImage srgb8{label + " sRGB8", frame.image.folder + "/srgb8",
                         passes::DecodedSrgb8("frame sRGB8", passes::Srgb8ColourTarget("frame sRGB8", pipeline.Colour())), {}};
@@ -274,6 +299,7 @@ StudyInputs LoadStudyInputs(const ExperimentConfig& config) {
     inputs.patterns.push_back(raster::ResolvePattern(config.pattern, mode.coverageSamples));
   }
   for (const std::string& resolve : config.resolves) passes::ResolveByName(resolve);
+  for (const std::string& policy : config.comparedPolicies) fmask::PolicyByName(policy);
   return inputs;
 }
 

@@ -15,6 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include "study/dispatch_log.h"
+#include "study/eqaa_study.h"
 #include "study/experiment.h"
 #include "study/frame_scene.h"
 #include "raster/sample_pattern.h"
@@ -46,6 +47,7 @@ struct StudyResolve {
 
 struct StudyFrame {
   fmask::EqaaConfig mode;
+  std::string policy;  // the fragment arbitration policy it was drawn under
   // The frame's box resolve (UNKNOWN samples dropped, hw-facts §1.6), the dispatch after the draw.
   ScoredImage image;
   // Every resolve of ExperimentConfig::resolves that reads this mode, in registry order.
@@ -54,7 +56,9 @@ struct StudyFrame {
   // from, passes::Srgb8ColourTarget), so a pass is compared with its own input's quantisation.
   std::optional<ScoredImage> srgb8{};
   fmask::FragmentCounters fragments{};
-  std::size_t drawDispatch = 0;  // index into Study::dispatches
+  UnknownSamples unknown{};      // at the end of the frame
+  std::size_t drawDispatch = 0;  // index into Study::dispatches; the box resolve is the next one
+  bool comparedPolicy = false;   // drawn again under one of ExperimentConfig::comparedPolicies
 };
 
 struct StudyPassRun {
