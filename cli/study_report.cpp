@@ -15,6 +15,7 @@
 #include "cli/frame_output.h"
 #include "cli/image_io.h"
 #include "cli/number_format.h"
+#include "cli/pattern_report.h"
 #include "cli/report_json.h"
 #include "cli/report_images.h"
 #include "cli/text_io.h"
@@ -624,6 +625,7 @@ nlohmann::ordered_json StudyJson(const Study& study, const RunCommandOptions& op
   json["dispatches"].erase("configuration");
   for (const StudyFrame& frame : study.frames) json["frames"].push_back(FrameJson(frame, options));
   for (const StudyPass& pass : study.passes) json["passes"].push_back(PassJson(study, pass));
+  json["sample_patterns"] = PatternErrorJson();
   return json;
 }
 
@@ -640,6 +642,7 @@ Report StudyHtml(const Study& study, const RunCommandOptions& options) {
   if (!study.passes.empty()) report.sections.push_back(PassesComparedSection(study));
   for (const StudyPass& pass : study.passes) report.sections.push_back(PassSection(study, pass));
   report.sections.push_back(DispatchesSection(study));
+  report.sections.push_back(PatternErrorSection());
   return report;
 }
 
