@@ -37,7 +37,12 @@ using cli::testing::ReadText;
 using cli::testing::RunAasim;
 using cli::testing::WriteFile;
 
-constexpr const char* kModes[] = {"1S/1Z/1F", "4S/4Z/4F", "8S/4Z/2F", "16S/8Z/4F"};
+// The default --modes, by name.
+const std::vector<std::string> kModes = [] {
+  std::vector<std::string> names;
+  for (const fmask::EqaaConfig& mode : cli::ParseEqaaModes(cli::kDefaultModes)) names.push_back(fmask::EqaaName(mode));
+  return names;
+}();
 
 std::vector<std::string> SmallRun(const fs::path& scratch, const fs::path& out, const std::string& threads) {
   return {"run",       "--quick", "--width",   "160",   "--height",         "96",
@@ -45,15 +50,17 @@ std::vector<std::string> SmallRun(const fs::path& scratch, const fs::path& out, 
           "--progress", "never",  "--out",     out.string()};
 }
 
-// `--post all` with the default modes (1S, 4S, 8S, 16S): every registered pass those frames feed
-// (SMAA S2x needs a 2S frame and is left out).
+// `--post all` with the default modes: every registered pass those frames feed (SMAA S2x needs a
+// 2S frame and is left out).
 std::vector<std::string> PassesTheDefaultModesFeed() {
+  const std::vector<fmask::EqaaConfig> modes = cli::ParseEqaaModes(cli::kDefaultModes);
   std::vector<std::string> names;
   for (const passes::RegisteredPass& pass : passes::AllPasses()) {
     const int samples = pass.info().eqaaSamples;
-    if (samples == 0 || samples == 1 || samples == 4 || samples == 8 || samples == 16) {
-      names.emplace_back(pass.info().name);
-    }
+    const bool fed = samples == 0 || std::any_of(modes.begin(), modes.end(), [&](const fmask::EqaaConfig& mode) {
+                       return mode.coverageSamples == samples;
+                     });
+    if (fed) names.emplace_back(pass.info().name);
   }
   return names;
 }
@@ -107,7 +114,8 @@ TEST_F(CliRunTest, WritesTheWholeOutputSetWithNamedExrLayers) {
   };
   EXPECT_EQ(sorted(ExrChannelNames(Out() / "images/ground-truth/ground-truth.exr")),
             sorted({"R", "G", "B", "coverage", "edge"}));
-  for (const char* slug : {"1s-1z-1f", "4s-4z-4f", "8s-4z-2f", "16s-8z-4f"}) {
+  for (const fmask::EqaaConfig& mode : cli::ParseEqaaModes(cli::kDefaultModes)) {
+    const std::string slug = study::ModeSlug(mode);
     const fs::path folder = Out() / "images/frames" / slug;
     const Names frame = ExrChannelNames(folder / "frame.exr");
     for (const char* layer : {"R", "depth", "normal.X", "objectId", "velocity.Y"}) {
@@ -165,9 +173,9 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
     EXPECT_EQ(draw["frame"], kModes[i]);
   }
   const std::string quality = ReadText(Out() / "quality.csv");
-  // Header, the modes, the fetch resolves of the two EQAA modes (F < S), the 1S frame as the passes'
-  // 8-bit sRGB target holds it, the passes.
-  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + 2 + 1 + passNames.size());
+  // Header, the modes, their resolves, the 1S frame as the passes' 8-bit sRGB target holds it, the
+  // passes.
+  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + resolveDispatches + 1 + passNames.size());
   EXPECT_NE(quality.find("\n1S/1Z/1F sRGB8,frame sRGB8,"), std::string::npos) << quality;
   EXPECT_FALSE(report["frames"][0]["srgb8"].is_null());
   EXPECT_TRUE(report["frames"][1]["srgb8"].is_null());
@@ -230,7 +238,9 @@ TEST_F(CliRunTest, ReportComparesEveryImageAndEveryPass) {
   const std::string html = ReadText(Out() / "report.html");
   const nlohmann::json report = Report();
   EXPECT_NE(html.find("id='cmp-view'"), std::string::npos);
-  const std::size_t perGroup = 1 + std::size(kModes) + 2 + 1 + report["passes"].size();
+  std::size_t resolves = 0;
+  for (const nlohmann::json& frame : report["frames"]) resolves += frame["resolves"].size();
+  const std::size_t perGroup = 1 + std::size(kModes) + resolves + 1 + report["passes"].size();
   auto count = [&](const std::string& text) {
     std::size_t n = 0;
     for (std::size_t at = html.find(text); at != std::string::npos; at = html.find(text, at + 1)) ++n;
