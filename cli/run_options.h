@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/frame_options.h"
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
 #include "study/experiment.h"
@@ -40,6 +41,7 @@ struct RunCommandOptions {
   std::string policy = "hraa";
   std::string gpu;  // default set by AddRunCommand (AddMachineOptions)
   std::string flush = "mix";
+  FrameSetupOptions setup;
   std::string post = "all";
   std::string strategy = "both";  // stencil, queue or both
   int groundTruthSamples = 256;

@@ -11,6 +11,7 @@
 
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
+#include "sim/draw_order.h"
 #include "sim/wave.h"
 
 namespace study {
@@ -31,6 +32,11 @@ struct ExperimentConfig {
   std::string policy = "hraa";   // fragment arbitration policy (docs/eqaa.md)
   std::string gpu;               // built-in name or file
   sim::WaveFlush flush = sim::WaveFlush::MixPrimitives;
+  // Seed 001's CRAA setup notes, carried into every mode's sim::FrameSettings (docs/eqaa.md
+  // "CRAA setup"): triangle order, a depth pre-pass then EQUAL, Z planes per tile (0 = off).
+  sim::DrawOrder drawOrder = sim::DrawOrder::Submission;
+  bool depthPrepass = false;
+  int maxZPlanes = 4;  // hw-facts §5.2 default
   std::vector<passes::PassConfig> passes;
   // The strategies every pass runs under, among those it declares; empty = all it declares.
   std::vector<passes::Strategy> strategies;

@@ -109,6 +109,9 @@ sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentC
   settings.pattern = inputs.patterns[mode];
   settings.policy = fmask::PolicyByName(config.policy);
   settings.flush = config.flush;
+  settings.drawOrder = config.drawOrder;
+  settings.depthPrepass = config.depthPrepass;
+  settings.maxZPlanes = config.maxZPlanes;
   ApplyLighting(inputs.scene.lighting, settings);
   return settings;
 }
@@ -143,7 +146,7 @@ class StudyRunner {
     sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode));
     StudyFrame frame{.mode = eqaa,
                      .image = {label, "frames/" + ModeSlug(eqaa), {"frame colour", 1, 1}, {}},
-                     .drawDispatch = study_.dispatches.size()};
+                     .drawDispatch = study_.dispatches.size() + pipeline.DispatchesBeforeDraw()};
     Step(observer_, "frame " + label, [&] { pipeline.Render(inputs_.frame.Geometry()); });
     TakeDispatches(machine_, study_.dispatches, label);
     frame.image.colour = pipeline.Colour();
