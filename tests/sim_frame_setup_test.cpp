@@ -31,6 +31,7 @@ struct FrameSetup {
   DrawOrder order = DrawOrder::Submission;
   bool prepass = false;
   int maxZPlanes = 4;
+  std::string policy = "hraa";
 };
 
 // What one render left behind: the machine's reports, the primitive every sample names
@@ -58,6 +59,7 @@ Rendered Render(const std::string& scene, int w, int h, const FrameSetup& setup)
   settings.drawOrder = setup.order;
   settings.depthPrepass = setup.prepass;
   settings.maxZPlanes = setup.maxZPlanes;
+  settings.policy = fmask::PolicyByName(setup.policy);
   FramePipeline pipeline(machine, settings);
   pipeline.Render(frameScene.Geometry());
   Rendered out;
@@ -269,19 +271,19 @@ TEST(SimFrameSetup, SortedPrepassFramesDoNotDependOnTheThreadCount) {
 // same order), the colour block's counters, the material draw's active lanes and the frame's
 // estimated time (pre-pass included).
 
-void PrintMeasurement(const std::string& scene, const fmask::EqaaConfig& eqaa, DrawOrder order, bool prepass,
-                      int maxZPlanes, const Rendered& reference) {
-  const int w = 640, h = 360;
-  const Rendered r = Render(scene, w, h, {.eqaa = eqaa, .order = order, .prepass = prepass, .maxZPlanes = maxZPlanes});
+void PrintMeasurement(const std::string& scene, const FrameSetup& setup, const Rendered& reference) {
+  const fmask::EqaaConfig& eqaa = setup.eqaa;
+  const Rendered r = Render(scene, 640, 360, setup);
   const Classified c = Classify(r, reference, eqaa.coverageSamples, /*exactTilesOnly=*/false);
   double microseconds = 0.0;
   for (const DispatchReport& report : r.reports) microseconds += report.time.totalMicroseconds;
   const auto unknown = [&](fmask::UnknownCause cause) {
     return static_cast<unsigned long long>(r.unknownByCause[static_cast<std::size_t>(cause)]);
   };
-  std::printf("| %s | %s | %s | %s | %d | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %.1f |\n",
+  std::printf("| %s | %s | %s | %s | %d | %s | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %.1f |\n",
               std::filesystem::path(scene).stem().string().c_str(), fmask::EqaaName(eqaa).c_str(),
-              std::string(DrawOrderName(order)).c_str(), prepass ? "on" : "off", maxZPlanes,
+              std::string(DrawOrderName(setup.order)).c_str(), setup.prepass ? "on" : "off", setup.maxZPlanes,
+              setup.policy.c_str(),
               unknown(fmask::UnknownCause::Eviction), unknown(fmask::UnknownCause::Untestable),
               static_cast<unsigned long long>(c.knownHidden), static_cast<unsigned long long>(c.unknownWhereStoredVisible),
               static_cast<unsigned long long>(r.fragments.fragmentsRejected),
@@ -293,7 +295,7 @@ TEST(SimFrameSetup, DISABLED_MeasureCraaSetup) {
   std::vector<std::string> scenes = {"builtin:default", "builtin:pixel-crossing"};
   const std::string engine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
   if (std::filesystem::exists(engine)) scenes.push_back(engine);
-  std::printf("| scene | mode | order | pre-pass | Z planes | UNKNOWN eviction | UNKNOWN untestable | known, hidden | "
+  std::printf("| scene | mode | order | pre-pass | Z planes | policy | UNKNOWN eviction | UNKNOWN untestable | known, hidden | "
               "UNKNOWN, stored visible | rejected | evictions | PS lanes | est. µs |\n");
   for (const std::string& scene : scenes) {
     for (const DrawOrder order : {DrawOrder::Submission, DrawOrder::FrontToBack}) {
@@ -303,7 +305,15 @@ TEST(SimFrameSetup, DISABLED_MeasureCraaSetup) {
           // With Z = S every sample is anchored and exact whatever the tiles hold.
           const std::vector<int> planes = eqaa.depthSamples == eqaa.coverageSamples ? std::vector<int>{4}
                                                                                     : std::vector<int>{16, 4, 0};
-          for (const int each : planes) PrintMeasurement(scene, eqaa, order, prepass, each, reference);
+          for (const int each : planes) {
+            PrintMeasurement(scene, {.eqaa = eqaa, .order = order, .prepass = prepass, .maxZPlanes = each}, reference);
+          }
+          // The colour block's half of the rescue off (docs/eqaa.md "Policies").
+          if (eqaa.depthSamples < eqaa.coverageSamples) {
+            PrintMeasurement(scene, {.eqaa = eqaa, .order = order, .prepass = prepass, .maxZPlanes = 4,
+                                     .policy = "no-zplane-rescue"},
+                             reference);
+          }
         }
       }
     }
