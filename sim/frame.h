@@ -48,9 +48,9 @@ struct FrameSettings {
   fmask::EqaaConfig eqaa{8, 4, 2};
   raster::SamplePattern pattern = raster::MakeBuiltinPattern("eqaa", 8);
   fmask::ArbitrationPolicy policy = fmask::PolicyByName("hraa");
-  // Z planes per 8x8 depth tile (hw-facts §5.2 default 4); 0 turns depth compression off, so
-  // every written tile is decompressed and unanchored samples are never tested exactly: the
-  // seed's "Compressed Depth Buffer" setting off. (The colour block's side of the Z-plane rescue
+  // Z planes per 8x8 depth tile (hw-facts §5.2 default 4); 0 turns depth compression off: a tile
+  // is decompressed at its first write, and from then on its unanchored samples are tested
+  // against their nearest anchor (the seed's "Compressed Depth Buffer" off). (The colour block's side of the Z-plane rescue
   // is the policy's zPlaneRescue, policy `no-zplane-rescue`.)
   int maxZPlanes = 4;
   // Triangles are drawn in this order; primitive ids are positions in the drawn order.
