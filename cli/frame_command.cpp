@@ -37,7 +37,20 @@ sim::FrameSettings MakeSettings(const FrameCommandOptions& options, raster::Samp
   settings.pattern = std::move(pattern);
   settings.policy = fmask::PolicyByName(options.policy);
   settings.flush = WaveFlushByName(options.flush);
+  settings.drawOrder = options.setup.Order();
+  settings.depthPrepass = options.setup.depthPrepass;
+  settings.maxZPlanes = options.setup.maxZPlanes;
   return settings;
+}
+
+// The CRAA setup settings that differ from the defaults, for the summary's first line.
+std::string SetupSummary(const FrameSetupOptions& setup) {
+  const FrameSetupOptions defaults;
+  std::string text;
+  if (setup.drawOrder != defaults.drawOrder) text += ", draw order " + setup.drawOrder;
+  if (setup.depthPrepass) text += ", depth pre-pass";
+  if (setup.maxZPlanes != defaults.maxZPlanes) text += ", max Z planes " + std::to_string(setup.maxZPlanes);
+  return text;
 }
 
 nlohmann::ordered_json ConfigurationJson(const FrameCommandOptions& options, int threads) {
@@ -52,6 +65,9 @@ nlohmann::ordered_json ConfigurationJson(const FrameCommandOptions& options, int
           {"policy", options.policy},
           {"gpu", options.gpu},
           {"flush", options.flush},
+          {"draw_order", options.setup.drawOrder},
+          {"depth_prepass", options.setup.depthPrepass},
+          {"max_zplanes", options.setup.maxZPlanes},
           {"post", options.pass ? nlohmann::ordered_json(options.pass->Info().name) : nlohmann::ordered_json("none")},
           {"pass_settings", options.pass ? nlohmann::ordered_json(passes::DescribeSettings(options.pass->settings))
                                          : nlohmann::ordered_json(nullptr)},
@@ -104,7 +120,8 @@ void RunFrameCommand(const FrameCommandOptions& options, std::ostream& summary) 
 
   summary << "frame      " << options.scene << ", " << options.width << "x" << options.height
           << ", " << fmask::EqaaName(options.Eqaa()) << ", pattern " << options.pattern
-          << ", policy " << options.policy << ", GPU " << machine.Gpu().name << "\n\n";
+          << ", policy " << options.policy << SetupSummary(options.setup) << ", GPU " << machine.Gpu().name
+          << "\n\n";
   PrintDispatchSummary(summary, records, machine.Gpu());
   if (passRuns.runs.size() == 2) PrintStrategyComparison(summary, records, options.pass->Info(), passRuns);
   PrintHostTime(summary, records, threads);

@@ -10,6 +10,7 @@
 #include <glm/vec4.hpp>
 
 #include "cli/common_options.h"
+#include "raster/limits.h"
 #include "sim/gpu_config.h"
 
 namespace cli {
@@ -42,6 +43,12 @@ void AddSurfaceOptions(CLI::App& command, FrameCommandOptions& options) {
                   "Fragment arbitration policy when all F slots are taken (docs/eqaa.md)")
       ->check(CLI::IsMember(fmask::PolicyNames()))
       ->capture_default_str();
+}
+
+std::vector<std::string> DrawOrderNames() {
+  std::vector<std::string> names;
+  for (const sim::NamedDrawOrder& entry : sim::kDrawOrders) names.emplace_back(entry.name);
+  return names;
 }
 
 void AddPostOptions(CLI::App& command, FrameCommandOptions& options) {
@@ -122,6 +129,31 @@ void AddMachineOptions(CLI::App& command, std::string& gpu, std::string& flush) 
       ->capture_default_str();
 }
 
+sim::DrawOrder FrameSetupOptions::Order() const {
+  const std::optional<sim::DrawOrder> order = sim::DrawOrderByName(drawOrder);
+  if (!order) throw std::invalid_argument("unknown draw order");
+  return *order;
+}
+
+void AddFrameSetupOptions(CLI::App& command, FrameSetupOptions& setup) {
+  command
+      .add_option("--draw-order", setup.drawOrder,
+                  "Triangle order of the frame's draw: submission = the scene's, front-to-back = "
+                  "triangles by nearest depth, objects-front-to-back = meshes by nearest depth "
+                  "(stable sorts; docs/eqaa.md \"CRAA setup\")")
+      ->check(CLI::IsMember(DrawOrderNames()))
+      ->capture_default_str();
+  command.add_flag("--depth-prepass", setup.depthPrepass,
+                   "Draw depth only first (its own dispatch, no pixel shader), then the material "
+                   "draw with depth test EQUAL and depth writes off");
+  command
+      .add_option("--max-zplanes", setup.maxZPlanes,
+                  "Z planes an 8x8 depth tile holds before it decompresses (0 = no depth "
+                  "compression, so unanchored samples are never tested exactly)")
+      ->check(CLI::Range(0, raster::kMaxZPlanesPerTile))
+      ->capture_default_str();
+}
+
 std::vector<passes::Strategy> FrameCommandOptions::Strategies() const {
   if (!pass) return {};
   return ChosenStrategies(pass->Info(), strategy);
@@ -138,6 +170,7 @@ CLI::App* AddFrameCommand(CLI::App& app, FrameCommandOptions& options) {
   AddViewportOptions(*command, options.scene, options.width, options.height);
   AddSurfaceOptions(*command, options);
   AddMachineOptions(*command, options.gpu, options.flush);
+  AddFrameSetupOptions(*command, options.setup);
   AddPostOptions(*command, options);
   AddRunOptions(*command, options);
   return command;

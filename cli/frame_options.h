@@ -13,9 +13,23 @@
 
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
+#include "sim/draw_order.h"
 #include "sim/wave.h"
 
 namespace cli {
+
+// Seed 001's CRAA setup notes as frame settings (sim::FrameSettings drawOrder, depthPrepass,
+// maxZPlanes; docs/eqaa.md "CRAA setup"), shared by `aasim frame` and `aasim run`.
+struct FrameSetupOptions {
+  std::string drawOrder = "submission";  // a sim::kDrawOrders name
+  bool depthPrepass = false;
+  int maxZPlanes = 4;  // hw-facts §5.2 default; 0 = depth compression off
+
+  sim::DrawOrder Order() const;
+};
+
+// --draw-order, --depth-prepass and --max-zplanes.
+void AddFrameSetupOptions(CLI::App& command, FrameSetupOptions& setup);
 
 struct FrameCommandOptions {
   std::string scene;  // "builtin:NAME" or a glTF path; default set by AddFrameCommand
@@ -29,6 +43,7 @@ struct FrameCommandOptions {
   std::string policy = "hraa";
   std::string gpu;  // name or file; default set by AddFrameCommand: sim::kDefaultGpuName
   std::string flush = "mix";
+  FrameSetupOptions setup;
   std::string post = "demo";  // NAME[:key=value,...] or "none"
   std::string strategy;  // empty until ResolveFrameOptions: "both" with a post pass
   int threads = 0;       // default set by AddFrameCommand: every core

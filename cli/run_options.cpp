@@ -233,6 +233,7 @@ CLI::App* AddRunCommand(CLI::App& app, RunCommandOptions& options) {
   AddViewportOptions(*command, options.scene, options.width, options.height);
   AddStudyOptions(*command, options);
   AddMachineOptions(*command, options.gpu, options.flush);
+  AddFrameSetupOptions(*command, options.setup);
   AddGroundTruthOptions(*command, options);
   AddRunOutputOptions(*command, options);
   return command;
@@ -306,6 +307,9 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.resolves = options.resolveNames;
   config.gpu = options.gpu;
   config.flush = WaveFlushByName(options.flush);
+  config.drawOrder = options.setup.Order();
+  config.depthPrepass = options.setup.depthPrepass;
+  config.maxZPlanes = options.setup.maxZPlanes;
   config.passes = options.postPasses;
   config.strategies = options.strategies;
   config.groundTruth.samplesPerPixel = options.groundTruthSamples;

@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/frame_options.h"
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
 #include "study/experiment.h"
@@ -43,6 +44,7 @@ struct RunCommandOptions {
   std::string comparePolicies = "none";  // further policies the EQAA modes are drawn under
   std::string gpu;  // default set by AddRunCommand (AddMachineOptions)
   std::string flush = "mix";
+  FrameSetupOptions setup;
   std::string post = "all";
   std::string strategy = "both";  // stencil, queue or both
   int groundTruthSamples = 256;

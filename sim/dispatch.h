@@ -217,6 +217,10 @@ class Machine {
   // active lanes, earlier stages return void. FullScreen: every stage returns void.
   template <typename... Stages>
   DispatchReport Draw(Dispatch& dispatch, const DrawCall& call, Stages&&... stages);
+  // A draw without a pixel shader (a depth pre-pass): the rasterizer's depth and stencil tests
+  // and writes only. No pixel wave launches and no colour block runs, so the report has raster
+  // counters and the raster term of the time estimate but no lanes; call.colour must be null.
+  DispatchReport DrawDepthOnly(Dispatch& dispatch, const DrawCall& call);
   template <typename... Stages>
   DispatchReport FullScreen(Dispatch& dispatch, const FullScreenCall& call, Stages&&... stages);
   // Each stage is kernel(ComputeLane&) -> void; a group barrier separates consecutive stages.

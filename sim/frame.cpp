@@ -3,6 +3,7 @@
 #include "sim/frame.h"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -45,7 +46,41 @@ T Interpolate(std::span<const T> values, std::span<const std::uint32_t> corners,
   return values[corners[0]] * b[0] + values[corners[1]] * b[1] + values[corners[2]] * b[2];
 }
 
+// The nearest depth of a triangle (DrawOrderPermutation's key). A NaN coordinate gives 0 (w
+// fails `> 0`, std::max(0, NaN) is 0), so keys are never NaN and the sort's comparison is a
+// strict weak order whatever the input holds.
+float NearestDepth(std::span<const glm::vec4> positions, std::span<const std::uint32_t> corners) {
+  float nearest = 1.0f;
+  for (const std::uint32_t corner : corners) {
+    const glm::vec4& p = positions[corner];
+    const float depth = p.w > 0.0f ? std::max(0.0f, p.z / p.w) : 0.0f;
+    if (depth < nearest) nearest = depth;
+  }
+  return nearest;
+}
+
 }  // namespace
+
+std::vector<std::uint32_t> DrawOrderPermutation(const FrameGeometry& geometry, DrawOrder order) {
+  const std::size_t triangles = geometry.indices.size() / 3;
+  std::vector<std::uint32_t> permutation(triangles);
+  std::iota(permutation.begin(), permutation.end(), 0u);
+  if (order == DrawOrder::Submission) return permutation;
+  std::vector<float> key(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    key[t] = NearestDepth(geometry.clipPositions, geometry.indices.subspan(3 * t, 3));
+  }
+  if (order == DrawOrder::ObjectsFrontToBack) {
+    std::vector<float> objectKey(geometry.baseColours.size(), 1.0f);
+    for (std::size_t t = 0; t < triangles; ++t) {
+      float& nearest = objectKey[geometry.objectIds[t]];
+      nearest = std::min(nearest, key[t]);
+    }
+    for (std::size_t t = 0; t < triangles; ++t) key[t] = objectKey[geometry.objectIds[t]];
+  }
+  std::ranges::stable_sort(permutation, {}, [&](std::uint32_t t) { return key[t]; });
+  return permutation;
+}
 
 FramePipeline::FramePipeline(Machine& machine, FrameSettings settings)
     : machine_(machine), settings_(std::move(settings)), depth_(DepthConfig(settings_), settings_.pattern),
@@ -117,8 +152,35 @@ void FramePipeline::ClearTargets() {
   velocity_.Fill(glm::vec2(0.0f));
 }
 
-DispatchReport FramePipeline::Render(const FrameGeometry& geometry, const FrameParams& params) {
-  Validate(geometry);
+FrameGeometry FramePipeline::Ordered(const FrameGeometry& geometry) {
+  if (settings_.drawOrder == DrawOrder::Submission) return geometry;
+  const std::vector<std::uint32_t> order = DrawOrderPermutation(geometry, settings_.drawOrder);
+  orderedIndices_.resize(geometry.indices.size());
+  orderedObjectIds_.resize(order.size());
+  for (std::size_t t = 0; t < order.size(); ++t) {
+    const std::span<const std::uint32_t> corners = geometry.indices.subspan(3 * std::size_t{order[t]}, 3);
+    std::copy(corners.begin(), corners.end(), orderedIndices_.begin() + 3 * static_cast<std::ptrdiff_t>(t));
+    orderedObjectIds_[t] = geometry.objectIds[order[t]];
+  }
+  FrameGeometry ordered = geometry;
+  ordered.indices = orderedIndices_;
+  ordered.objectIds = orderedObjectIds_;
+  return ordered;
+}
+
+void FramePipeline::DepthPrepass(const FrameGeometry& geometry) {
+  Dispatch dispatch("frame/depth-prepass", kDepthPrepassKernel);
+  DrawCall call;
+  call.input = {geometry.clipPositions, geometry.indices, 0};
+  call.state.cull = settings_.cull;
+  call.depth = &depth_;
+  call.flush = settings_.flush;
+  machine_.DrawDepthOnly(dispatch, call);
+}
+
+DispatchReport FramePipeline::Render(const FrameGeometry& submitted, const FrameParams& params) {
+  Validate(submitted);
+  const FrameGeometry geometry = Ordered(submitted);
   if (params.pattern != nullptr) {
     CheckPatternFits(*params.pattern, settings_.eqaa);
     depth_.SetPattern(*params.pattern);
@@ -126,6 +188,7 @@ DispatchReport FramePipeline::Render(const FrameGeometry& geometry, const FrameP
   }
   frameIndex_ = params.frameIndex;
   ClearTargets();
+  if (settings_.depthPrepass) DepthPrepass(geometry);
   Dispatch dispatch("frame/material", kMaterialKernel);
   const RwTextureView<float> depthOut = dispatch.ReadWrite(depthTarget_);
   const RwTextureView<glm::vec4> normalOut = dispatch.ReadWrite(normal_);
@@ -173,6 +236,12 @@ DispatchReport FramePipeline::Render(const FrameGeometry& geometry, const FrameP
   DrawCall call;
   call.input = {geometry.clipPositions, geometry.indices, 0};
   call.state.cull = settings_.cull;
+  if (settings_.depthPrepass) {
+    // The pre-pass stored exactly this draw's depths (same set-ups, same sample positions, the
+    // same plane evaluation), so EQUAL passes where the triangle is the visible one.
+    call.state.depth.func = raster::CompareFunc::Equal;
+    call.state.depth.writeEnable = false;
+  }
   call.depth = &depth_;
   call.colour = &eqaa_;
   call.flush = settings_.flush;

@@ -7,10 +7,14 @@
 //
 // Pixel-rate targets keep the fragment that last passed coverage sample 0 of the pixel, the
 // sample an MSAA G-buffer read at sample 0 returns, so they are defined for every S.
+//
+// Seed 001's CRAA setup notes (draw order, a depth pre-pass then an EQUAL test, compressed depth)
+// are FrameSettings; docs/eqaa.md "CRAA setup" says what each does to the EQAA surface.
 
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -20,6 +24,7 @@
 #include "raster/depth_stencil.h"
 #include "raster/sample_pattern.h"
 #include "sim/dispatch.h"
+#include "sim/draw_order.h"
 
 namespace sim {
 
@@ -44,7 +49,17 @@ struct FrameSettings {
   fmask::EqaaConfig eqaa{8, 4, 2};
   raster::SamplePattern pattern = raster::MakeBuiltinPattern("eqaa", 8);
   fmask::ArbitrationPolicy policy = fmask::PolicyByName("hraa");
+  // Z planes per 8x8 depth tile (hw-facts §5.2 default 4); 0 turns depth compression off: a tile
+  // is decompressed at its first write, and from then on its unanchored samples are tested
+  // against their nearest anchor (the seed's "Compressed Depth Buffer" off). (The colour block's side of the Z-plane rescue
+  // is the policy's zPlaneRescue, policy `no-zplane-rescue`.)
   int maxZPlanes = 4;
+  // Triangles are drawn in this order; primitive ids are positions in the drawn order.
+  DrawOrder drawOrder = DrawOrder::Submission;
+  // A depth-only draw of the same triangles (dispatch "frame/depth-prepass": depth test LESS and
+  // writes on, no pixel shader, no colour block) before the material draw, which then tests
+  // EQUAL with depth writes off, so only the visible surface reaches the colour block.
+  bool depthPrepass = false;
   WaveFlush flush = WaveFlush::MixPrimitives;
   raster::CullMode cull = raster::CullMode::Back;
   glm::vec3 towardsLight{0.4f, 0.8f, 0.45f};  // world space; normalised on use
@@ -61,6 +76,19 @@ inline constexpr KernelInfo kMaterialKernel{
     .source = "hand count of sim/frame.cpp's material kernel: 3 barycentric interpolations of normal, colour "
               "and texcoord (~18), normalise (~8), N.L and the Lambert mix (~10), a bilinear sample's "
               "address and weights (~16), exports (~12)"};
+
+// The depth-only draw of the pre-pass: no pixel shader runs, so it declares no VALU work; the
+// registers are the smallest legal declaration (occupancy is reported but no wave launches).
+inline constexpr KernelInfo kDepthPrepassKernel{
+    .vgprs = 1, .sgprs = 0, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 0,
+    .source = "no pixel shader: a depth-only draw launches no pixel waves (vertex work is not modelled for any draw)"};
+
+// Triangle t of the drawn order is triangle order[t] of the geometry. Submission is the
+// identity; the front-to-back orders sort by nearest depth (the smallest z/w of the triangle's
+// vertices, 0 for a vertex at or behind the eye, where clipping puts the triangle on the near
+// plane), ties keeping submission order (a stable sort: the same input gives the same order).
+// ObjectsFrontToBack keys every triangle by the nearest depth of its object.
+std::vector<std::uint32_t> DrawOrderPermutation(const FrameGeometry& geometry, DrawOrder order);
 
 // What may change from one frame to the next without reallocating the pipeline's surfaces: the
 // sample pattern (a jitter or pattern schedule: halton:K offsets, alternating T2x patterns) and
@@ -82,6 +110,9 @@ class FramePipeline {
   DispatchReport Render(const FrameGeometry& geometry, const FrameParams& params = {});
 
   const FrameSettings& Settings() const { return settings_; }
+  // Dispatches Render issues before the material draw (the depth pre-pass, when on), so a caller
+  // that records the machine's reports can find the draw among them.
+  std::size_t DispatchesBeforeDraw() const { return settings_.depthPrepass ? 1 : 0; }
   int FrameIndex() const { return frameIndex_; }
   fmask::EqaaSurface& Eqaa() { return eqaa_; }
   const fmask::EqaaSurface& Eqaa() const { return eqaa_; }
@@ -98,6 +129,9 @@ class FramePipeline {
   void Validate(const FrameGeometry& geometry) const;
   void ValidateTextures(const FrameGeometry& geometry) const;
   void ClearTargets();
+  // The geometry in the settings' draw order (the caller's own for Submission).
+  FrameGeometry Ordered(const FrameGeometry& geometry);
+  void DepthPrepass(const FrameGeometry& geometry);
   void Resolve();
 
   Machine& machine_;
@@ -110,6 +144,8 @@ class FramePipeline {
   Texture2D<std::uint32_t> objectId_;
   Texture2D<glm::vec2> velocity_;
   fmask::FragmentCounters fragments_;
+  std::vector<std::uint32_t> orderedIndices_;    // Ordered's copies, reused across frames
+  std::vector<std::uint32_t> orderedObjectIds_;
   int frameIndex_ = 0;
 };
 

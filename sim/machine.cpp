@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -304,6 +305,24 @@ const raster::RasterResult& Machine::RasterizeFullScreen(const FullScreenCall& c
   if (call.stencil != nullptr) return result;
   fullScreenRaster_ = result;
   return *fullScreenRaster_;
+}
+
+DispatchReport Machine::DrawDepthOnly(Dispatch& dispatch, const DrawCall& call) {
+  const auto start = std::chrono::steady_clock::now();
+  if (call.depth == nullptr) throw std::invalid_argument(dispatch.Name() + ": a draw needs a depth/stencil surface");
+  if (call.colour != nullptr) throw std::invalid_argument(dispatch.Name() + ": a depth-only draw has no colour target");
+  ValidateKernel(dispatch, kWaveLanes);
+  const raster::RasterResult& result = rasterizer_.Run(call.input, call.state, *call.depth);
+  DispatchReport report;
+  report.kind = DispatchKind::Draw;
+  report.raster = result.counters;
+  // The scan converter still walks every quad it emits (the raster term of the estimate). No lane
+  // launches, so the heat map stays empty (and costs no memory).
+  report.lanes.pixelsScanned += (result.counters.quadsFull + result.counters.quadsPartial) * raster::kQuadPixels;
+  std::vector<detail::ChunkState> chunks = MakeChunks(dispatch, 0, nullptr);
+  Finish(dispatch, std::move(report), chunks, kWaveLanes);
+  reports_.back().hostMilliseconds = detail::MillisecondsSince(start);
+  return reports_.back();
 }
 
 void Machine::CommitSlots(Dispatch& dispatch, const detail::ChunkState& chunk, DispatchReport& report) {

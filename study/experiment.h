@@ -12,6 +12,7 @@
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
 #include "passes/resolve.h"
+#include "sim/draw_order.h"
 #include "sim/wave.h"
 
 namespace study {
@@ -35,6 +36,11 @@ struct ExperimentConfig {
   std::vector<std::string> comparedPolicies;
   std::string gpu;               // built-in name or file
   sim::WaveFlush flush = sim::WaveFlush::MixPrimitives;
+  // Seed 001's CRAA setup notes, carried into every mode's sim::FrameSettings (docs/eqaa.md
+  // "CRAA setup"): triangle order, a depth pre-pass then EQUAL, Z planes per tile (0 = off).
+  sim::DrawOrder drawOrder = sim::DrawOrder::Submission;
+  bool depthPrepass = false;
+  int maxZPlanes = 4;  // hw-facts §5.2 default
   std::vector<passes::PassConfig> passes;
   // Resolves (passes/resolve.h) run on every mode they read, besides the frame's box resolve.
   std::vector<std::string> resolves = passes::ResolveNames();

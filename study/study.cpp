@@ -94,6 +94,9 @@ sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentC
   settings.pattern = inputs.patterns[mode];
   settings.policy = fmask::PolicyByName(policy);
   settings.flush = config.flush;
+  settings.drawOrder = config.drawOrder;
+  settings.depthPrepass = config.depthPrepass;
+  settings.maxZPlanes = config.maxZPlanes;
   ApplyLighting(inputs.scene.lighting, settings);
   return settings;
 }
@@ -133,7 +136,7 @@ class StudyRunner {
     StudyFrame frame{.mode = config_.modes[mode],
                      .policy = pipeline.Settings().policy.name,
                      .image = {label, folder, {"frame colour", 1, 1}, {}},
-                     .drawDispatch = study_.dispatches.size()};
+                     .drawDispatch = study_.dispatches.size() + pipeline.DispatchesBeforeDraw()};
     Step(observer_, "frame " + label, [&] { pipeline.Render(inputs_.frame.Geometry()); });
     TakeDispatches(machine_, study_.dispatches, label);
     frame.image.colour = pipeline.Colour();
