@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/common_options.h"
+#include "cli/craa_lut_command.h"
 #include "cli/fixtures_command.h"
 #include "cli/frame_command.h"
 #include "cli/frame_options.h"
@@ -80,6 +81,8 @@ int RunAasim(int argc, char** argv) {
   CLI::App* post = cli::AddPostCommand(app, postOptions);
   cli::SmaaTablesCommandOptions smaaTablesOptions;
   CLI::App* smaaTables = cli::AddSmaaTablesCommand(app, smaaTablesOptions);
+  cli::CraaLutCommandOptions craaLutOptions;
+  CLI::App* craaLut = cli::AddCraaLutCommand(app, craaLutOptions);
   cli::RequireDecimalIntegers(app);
   app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
              "default scene, report in out/report/report.html.");
@@ -92,7 +95,7 @@ int RunAasim(int argc, char** argv) {
     if (post->parsed()) cli::ResolvePostOptions(postOptions);
     // `aasim` alone is the main job with its defaults.
     if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed() && !post->parsed() &&
-        !smaaTables->parsed()) {
+        !smaaTables->parsed() && !craaLut->parsed()) {
       cli::ResolveRunOptions(*run, runOptions);
     }
   } catch (const CLI::Success& help) {
@@ -105,6 +108,7 @@ int RunAasim(int argc, char** argv) {
                           : passes->parsed()     ? "aasim passes"
                           : post->parsed()       ? "aasim post"
                           : smaaTables->parsed() ? "aasim smaa-tables"
+                          : craaLut->parsed()    ? "aasim craa-lut"
                                                  : "aasim";
     return ReportUsageError(command, error);
   }
@@ -122,6 +126,8 @@ int RunAasim(int argc, char** argv) {
       cli::RunPostCommand(postOptions, std::cout);
     } else if (smaaTables->parsed()) {
       cli::RunSmaaTablesCommand(smaaTablesOptions, std::cout);
+    } else if (craaLut->parsed()) {
+      cli::RunCraaLutCommand(craaLutOptions, std::cout);
     } else {
       NamingTheScene(runOptions.scene, [&] { cli::RunRunCommand(runOptions, std::cout, std::cerr); });
     }
