@@ -591,7 +591,9 @@ LutEntry ToEntry(const std::array<int, kNeighbours>& w) {
 }
 
 // Exact search of the weights with w_n <= 15 and sum <= the UNKNOWN samples. Ties go to the
-// smaller sum (fewer samples moved), then to the first in (up, bottom, left, right) order.
+// smaller sum (fewer samples moved), then to the lexicographically largest (up, bottom, left,
+// right), so a tie between a vertical and a horizontal neighbour goes to the vertical one, as in
+// NearestEdge. The loops visit weights in increasing lexicographic order.
 std::array<int, kNeighbours> Fit(const Sums& sums, int unknown, int samples) {
   const int cap = std::min(kMaxLutWeight, unknown);
   std::array<int, kNeighbours> best{}, w{};
@@ -603,7 +605,7 @@ std::array<int, kNeighbours> Fit(const Sums& sums, int unknown, int samples) {
           const std::int64_t value = Objective(sums, w, samples);
           const int sum = w[0] + w[1] + w[2] + w[3];
           const int bestSum = best[0] + best[1] + best[2] + best[3];
-          if (value < bestValue || (value == bestValue && sum < bestSum)) {
+          if (value < bestValue || (value == bestValue && sum <= bestSum)) {
             bestValue = value;
             best = w;
           }
