@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/common_options.h"
+#include "cli/craa_lut_command.h"
 #include "cli/fixtures_command.h"
 #include "cli/frame_command.h"
 #include "cli/frame_options.h"
@@ -83,6 +84,8 @@ int RunAasim(int argc, char** argv) {
   CLI::App* smaaTables = cli::AddSmaaTablesCommand(app, smaaTablesOptions);
   cli::PatternsCommandOptions patternsOptions;
   CLI::App* patterns = cli::AddPatternsCommand(app, patternsOptions);
+  cli::CraaLutCommandOptions craaLutOptions;
+  CLI::App* craaLut = cli::AddCraaLutCommand(app, craaLutOptions);
   cli::RequireDecimalIntegers(app);
   app.footer("Without a subcommand, aasim runs `aasim run` with its defaults: the main job on the built-in "
              "default scene, report in out/report/report.html.");
@@ -95,7 +98,7 @@ int RunAasim(int argc, char** argv) {
     if (post->parsed()) cli::ResolvePostOptions(postOptions);
     // `aasim` alone is the main job with its defaults.
     if (!raster->parsed() && !fixtures->parsed() && !frame->parsed() && !passes->parsed() && !post->parsed() &&
-        !smaaTables->parsed() && !patterns->parsed()) {
+        !smaaTables->parsed() && !patterns->parsed() && !craaLut->parsed()) {
       cli::ResolveRunOptions(*run, runOptions);
     }
   } catch (const CLI::Success& help) {
@@ -109,6 +112,7 @@ int RunAasim(int argc, char** argv) {
                           : post->parsed()       ? "aasim post"
                           : smaaTables->parsed() ? "aasim smaa-tables"
                           : patterns->parsed()   ? "aasim patterns"
+                          : craaLut->parsed()    ? "aasim craa-lut"
                                                  : "aasim";
     return ReportUsageError(command, error);
   }
@@ -128,6 +132,8 @@ int RunAasim(int argc, char** argv) {
       cli::RunSmaaTablesCommand(smaaTablesOptions, std::cout);
     } else if (patterns->parsed()) {
       cli::RunPatternsCommand(*patterns, patternsOptions, std::cout);
+    } else if (craaLut->parsed()) {
+      cli::RunCraaLutCommand(craaLutOptions, std::cout);
     } else {
       NamingTheScene(runOptions.scene, [&] { cli::RunRunCommand(runOptions, std::cout, std::cerr); });
     }

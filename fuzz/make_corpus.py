@@ -99,6 +99,21 @@ write("sample_pattern", "tiny-off-grid.json",
       '{"name":"x","samples":2,"units":"pixels","offsets":[[0.5,0.5],[5e-324,0.5]]}')
 write("sample_pattern", "nested-70000.json", '{"name": "x", "samples": ' + deep(70000) + "}")
 
+# --- CRAA LUT fixtures (docs/craa.md "File format") -----------------------------------------------
+def craa_lut(samples, tables, entries, fallback=()):
+    return json.dumps({"schema": "aasim.craa.lut", "version": 1, "pattern": "fuzz", "samples": samples,
+                       "tables": [{"offsets": offsets, "fallback": list(fallback), "entries": entries}
+                                  for offsets in tables]})
+
+write("craa_lut", "uniform-2.json",
+      craa_lut(2, [[[-4, -4], [4, 4]]], [[0, 0, 0, 0], [1, 0, 0, 0], [0, 0, 0, 1], [0, 1, 1, 0]], [2]))
+# One table per quad pixel; craa_lut() gives every table the same entries.
+write("craa_lut", "per-pixel-1.json",
+      craa_lut(1, [[[0, 0]], [[1, 1]], [[-1, -1]], [[7, -8]]], [[0, 0, 0, 0], [0, 0, 1, 0]]))
+write("craa_lut", "sum-above-unknown.json",
+      craa_lut(2, [[[-4, -4], [4, 4]]], [[0, 0, 0, 0], [1, 1, 0, 0], [0, 0, 0, 1], [0, 1, 1, 0]]))
+write("craa_lut", "nested-70000.json", '{"schema": "aasim.craa.lut", "tables": ' + deep(70000) + "}")
+
 # --- GPU files ----------------------------------------------------------------------------------
 gpu_dir = os.path.join(HERE, "..", "sim", "gpus")
 for name in sorted(os.listdir(gpu_dir)):

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "passes/craa/craa_lut_resolve.h"
 #include "passes/craa/craa_simple.h"
 #include "passes/resolves/fetch.h"
 
@@ -13,6 +14,7 @@ std::span<const RegisteredResolve> AllResolves() {
   static const RegisteredResolve kResolves[] = {
       {resolves::FetchInfo, resolves::MakeFetch},
       {craa::SimpleInfo, craa::MakeSimple},
+      {craa::LutInfo, craa::MakeLut},
   };
   return kResolves;
 }
