@@ -7,6 +7,7 @@
 // This file is the only list of them; a resolve joins the study, `aasim run --resolves` and the
 // tests with one line in resolve.cpp.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -36,6 +37,9 @@ struct ResolveInfo {
 struct ResolveContext {
   const raster::SamplePattern* pattern = nullptr;
   std::optional<std::filesystem::path> tableCache;  // nullopt: derive tables on every run
+  // Synthetic configurations the CRAA LUT is fitted to; 0 = the generator's default (craa_lut.h).
+  // Fewer make a coarser table faster (tests).
+  std::int64_t tableConfigurations = 0;
 };
 
 class Resolve {

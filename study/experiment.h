@@ -46,6 +46,7 @@ struct ExperimentConfig {
   std::vector<std::string> resolves = passes::ResolveNames();
   // Where tables resolves derive from the sample pattern (the CRAA LUT) are cached between runs.
   std::optional<std::filesystem::path> tableCache;
+  std::int64_t tableConfigurations = 0;  // passes::ResolveContext::tableConfigurations
   // The strategies every pass runs under, among those it declares; empty = all it declares.
   std::vector<passes::Strategy> strategies;
   GroundTruthConfig groundTruth;

@@ -178,7 +178,8 @@ class StudyRunner {
   }
 
   void RunResolves(std::size_t mode, const sim::FramePipeline& pipeline, StudyFrame& frame) {
-    const passes::ResolveContext context{.pattern = &inputs_.patterns[mode], .tableCache = config_.tableCache};
+    const passes::ResolveContext context{.pattern = &inputs_.patterns[mode], .tableCache = config_.tableCache,
+                                               .tableConfigurations = config_.tableConfigurations};
     for (const std::string& name : config_.resolves) {
       const passes::RegisteredResolve& registered = passes::ResolveByName(name);
       if (!registered.info().reads(frame.mode)) continue;

@@ -35,14 +35,16 @@ bool MadeFor(const CraaLut& lut, const raster::SamplePattern& pattern) {
 }
 
 // FNV-1a of the pattern's JSON form and the fixture version: a stable name for its cached table.
-std::string CacheName(const raster::SamplePattern& pattern) {
+std::string CacheName(const raster::SamplePattern& pattern, std::int64_t configurations) {
   std::uint64_t hash = 1469598103934665603ull;
   for (const char c : raster::FormatPatternJson(pattern) + "v" + std::to_string(kCraaLutVersion)) {
     hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
   }
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
-  return "craa-lut-" + std::to_string(pattern.Count()) + "s-" + hex + ".json";
+  std::string count;
+  if (configurations != 0) count.append("-").append(std::to_string(configurations));
+  return "craa-lut-" + std::to_string(pattern.Count()) + "s-" + hex + count + ".json";
 }
 
 std::optional<CraaLut> ReadCached(const std::filesystem::path& file, const raster::SamplePattern& pattern) {
@@ -121,11 +123,13 @@ class LutResolve final : public Resolve {
 
 }  // namespace
 
-CraaLut CachedCraaLut(const raster::SamplePattern& pattern, const std::optional<std::filesystem::path>& cache) {
-  if (!cache) return GenerateCraaLut(pattern);
-  const std::filesystem::path file = *cache / CacheName(pattern);
+CraaLut CachedCraaLut(const raster::SamplePattern& pattern, const std::optional<std::filesystem::path>& cache,
+                      std::int64_t configurations) {
+  const LutGeneratorSettings settings = configurations == 0 ? LutGeneratorSettings{} : WithConfigurations({}, configurations);
+  if (!cache) return GenerateCraaLut(pattern, settings);
+  const std::filesystem::path file = *cache / CacheName(pattern, configurations);
   if (std::optional<CraaLut> cached = ReadCached(file, pattern)) return std::move(*cached);
-  CraaLut lut = GenerateCraaLut(pattern);
+  CraaLut lut = GenerateCraaLut(pattern, settings);
   WriteCached(file, lut);
   return lut;
 }
@@ -143,7 +147,7 @@ const ResolveInfo& LutInfo() {
 
 std::unique_ptr<Resolve> MakeLut(const ResolveContext& context) {
   const raster::SamplePattern& pattern = RequirePattern(LutInfo(), context);
-  return std::make_unique<LutResolve>(pattern, CachedCraaLut(pattern, context.tableCache));
+  return std::make_unique<LutResolve>(pattern, CachedCraaLut(pattern, context.tableCache, context.tableConfigurations));
 }
 
 std::unique_ptr<Resolve> MakeLutWith(const raster::SamplePattern& pattern, CraaLut lut) {

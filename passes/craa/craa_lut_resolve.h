@@ -21,10 +21,12 @@
 
 namespace passes::craa {
 
-// The table for `pattern`: read from `cache` when a fixture made for exactly these offsets is
-// there, else generated with the default settings (and written there, atomically). Throws
-// std::runtime_error naming the cache file when it cannot be read back or written.
-CraaLut CachedCraaLut(const raster::SamplePattern& pattern, const std::optional<std::filesystem::path>& cache);
+// The table for `pattern`, fitted to `configurations` synthetic configurations (0 = the
+// generator's default): read from `cache` when a fixture made for exactly these offsets and that
+// count is there, else generated (and written there, atomically). Throws naming the cache file
+// when it cannot be read back or written.
+CraaLut CachedCraaLut(const raster::SamplePattern& pattern, const std::optional<std::filesystem::path>& cache,
+                      std::int64_t configurations = 0);
 
 const ResolveInfo& LutInfo();
 std::unique_ptr<Resolve> MakeLut(const ResolveContext& context);
