@@ -166,7 +166,8 @@ void CheckGroundTruthSamples(int samples) {
 }
 
 void CheckMemory(const RunCommandOptions& options) {
-  const std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, options.postPasses);
+  const std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, options.postPasses,
+                                               options.resolveNames, options.comparedPolicies.size());
   if (bytes > kMaxRunBytes) {
     throw CLI::ValidationError("--width " + std::to_string(options.width) + " --height " +
                                std::to_string(options.height) + " --modes " + options.modes +
@@ -321,7 +322,8 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
 }
 
 std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
-                               std::span<const passes::PassConfig> postPasses) {
+                               std::span<const passes::PassConfig> postPasses, std::span<const std::string> resolves,
+                               std::size_t comparedPolicies) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
   std::uint64_t largestFrame = 0;
   for (const fmask::EqaaConfig& mode : modes) {
@@ -331,8 +333,16 @@ std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::E
   // (passes/metrics.cpp: SSIM's and FLIP's per-pixel planes, 24 floats at most at once).
   const std::uint64_t groundTruth = sizeof(glm::vec3) + sizeof(float) + 1;
   const std::uint64_t metrics = 3 * sizeof(float) + 24 * sizeof(float);
-  // Kept per mode: resolved colour, three error maps, the EQAA planes' resolve and counts.
-  const std::uint64_t perMode = sizeof(glm::vec4) + 3 * sizeof(float) + 8 * sizeof(float);
+  // Kept per frame: resolved colour, three error maps, the EQAA planes' resolve and counts; per
+  // resolve of the frame: its colour and three error maps. Compared policies redraw the EQAA modes.
+  const std::uint64_t perFrame = sizeof(glm::vec4) + 3 * sizeof(float) + 8 * sizeof(float);
+  const std::uint64_t perResolve = sizeof(glm::vec4) + 3 * sizeof(float);
+  std::uint64_t frames = 0, resolveImages = 0;
+  for (const fmask::EqaaConfig& mode : modes) {
+    const std::uint64_t draws = 1 + (mode.fragments < mode.coverageSamples ? comparedPolicies : 0);
+    frames += draws;
+    for (const std::string& resolve : resolves) resolveImages += draws * passes::ResolveByName(resolve).info().reads(mode);
+  }
   // Passes run one instance at a time (PassInfo::bytesPerPixel, the largest counts); what the
   // study keeps of each pass stays: its output colour, three error maps and every strategy's layers.
   std::uint64_t largestRun = 0, kept = 0;
@@ -341,7 +351,8 @@ std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::E
     largestRun = std::max(largestRun, info.bytesPerPixel);
     kept += sizeof(glm::vec4) + 3 * sizeof(float) + info.strategies.size() * info.layerBytesPerPixel;
   }
-  return pixels * (largestFrame + groundTruth + metrics + modes.size() * perMode + largestRun + kept);
+  return pixels * (largestFrame + groundTruth + metrics + frames * perFrame + resolveImages * perResolve + largestRun +
+                   kept);
 }
 
 }  // namespace cli

@@ -78,8 +78,10 @@ std::vector<fmask::EqaaConfig> ParseEqaaModes(std::string_view list);
 study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options);
 
 // Bytes held at once: the ground truth and its metrics, one frame pipeline at the largest mode,
-// every mode's kept images, and the post passes' outputs.
+// every frame's kept images (the modes, and the EQAA modes again per compared policy) with those
+// of the resolves that read it, and the post passes' outputs.
 std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
-                               std::span<const passes::PassConfig> postPasses);
+                               std::span<const passes::PassConfig> postPasses,
+                               std::span<const std::string> resolves = {}, std::size_t comparedPolicies = 0);
 
 }  // namespace cli

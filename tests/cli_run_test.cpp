@@ -377,8 +377,8 @@ TEST(FullSize, NoArgumentsRunsTheDefaultStudy) {
   rusage usage{};
   ASSERT_EQ(::getrusage(RUSAGE_CHILDREN, &usage), 0);
   const std::uint64_t peak = std::uint64_t(usage.ru_maxrss) * 1024u;
-  EXPECT_LE(peak, cli::EstimateRunBytes(1920, 1080, cli::ParseEqaaModes("1S/1Z/1F,4S/4Z/4F,8S/4Z/2F,16S/8Z/4F"),
-                                        passConfigs));
+  EXPECT_LE(peak, cli::EstimateRunBytes(1920, 1080, cli::ParseEqaaModes(cli::kDefaultModes), passConfigs,
+                                        passes::ResolveNames()));
   fs::remove_all(scratch);
 }
 
