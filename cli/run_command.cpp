@@ -27,9 +27,11 @@ using study::ScoredImage;
 // One line per finished step on the log, with its host time; a progress bar on stderr for the
 // ground truth, as --progress says.
 study::StudyObserver Observer(const RunCommandOptions& options, std::ostream& log,
-                              std::function<void(const StudyFrame&, const sim::FramePipeline&)> frameDone) {
+                              std::function<void(const StudyFrame&, const sim::FramePipeline&)> frameDone,
+                              std::function<void(const StudyPass&)> passDone) {
   study::StudyObserver observer;
   observer.frameDone = std::move(frameDone);
+  observer.passDone = std::move(passDone);
   if (options.progressMode == ProgressMode::Never) return observer;
   observer.stepDone = [&log](const std::string& step, double seconds) {
     char text[32];
@@ -99,9 +101,10 @@ void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std:
   OutputDir dir = OpenOutOption(resolved.out);
   const Study study = study::RunStudy(
       inputs, config,
-      Observer(resolved, log, [&](const StudyFrame& frame, const sim::FramePipeline& pipeline) {
-        StageFrameFiles(dir, frame, pipeline);
-      }));
+      Observer(
+          resolved, log,
+          [&](const StudyFrame& frame, const sim::FramePipeline& pipeline) { StageFrameFiles(dir, frame, pipeline); },
+          [&](const StudyPass& pass) { StagePassLayers(dir, pass); }));
   StageStudyFiles(dir, study, resolved);
   dir.Commit("report.json");
   PrintSummary(summary, study, resolved, dir.Path());

@@ -333,26 +333,29 @@ std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::E
   // (passes/metrics.cpp: SSIM's and FLIP's per-pixel planes, 24 floats at most at once).
   const std::uint64_t groundTruth = sizeof(glm::vec3) + sizeof(float) + 1;
   const std::uint64_t metrics = 3 * sizeof(float) + 24 * sizeof(float);
-  // Kept per frame: resolved colour, three error maps, the EQAA planes' resolve and counts; per
-  // resolve of the frame: its colour and three error maps. Compared policies redraw the EQAA modes.
-  const std::uint64_t perFrame = sizeof(glm::vec4) + 3 * sizeof(float) + 8 * sizeof(float);
-  const std::uint64_t perResolve = sizeof(glm::vec4) + 3 * sizeof(float);
-  std::uint64_t frames = 0, resolveImages = 0;
+  // Kept per scored image (a frame, each resolve of it, the passes' sRGB8 input): colour and three
+  // error maps. Compared policies redraw the EQAA modes. While a frame's files are written, its
+  // EQAA planes (cli/eqaa_output.h: RGBA, one code per sample, fragments, unknown) exist once.
+  const std::uint64_t scoredImage = sizeof(glm::vec4) + 3 * sizeof(float);
+  std::uint64_t frames = 0, resolveImages = 0, eqaaPlanes = 0;
   for (const fmask::EqaaConfig& mode : modes) {
+    eqaaPlanes = std::max(eqaaPlanes, (6 + std::uint64_t(mode.coverageSamples)) * sizeof(float));
     const std::uint64_t draws = 1 + (mode.fragments < mode.coverageSamples ? comparedPolicies : 0);
     frames += draws;
     for (const std::string& resolve : resolves) resolveImages += draws * passes::ResolveByName(resolve).info().reads(mode);
   }
-  // Passes run one instance at a time (PassInfo::bytesPerPixel, the largest counts); what the
-  // study keeps of each pass stays: its output colour, three error maps and every strategy's layers.
+  // Passes run one instance at a time (PassInfo::bytesPerPixel, the largest counts) and their
+  // layers, every strategy's, live until the pass's files are written (StudyObserver::passDone);
+  // what the study keeps of each pass stays: its output colour and three error maps.
   std::uint64_t largestRun = 0, kept = 0;
   for (const passes::PassConfig& pass : postPasses) {
     const passes::PassInfo& info = pass.Info();
-    largestRun = std::max(largestRun, info.bytesPerPixel);
-    kept += sizeof(glm::vec4) + 3 * sizeof(float) + info.strategies.size() * info.layerBytesPerPixel;
+    largestRun = std::max(largestRun, info.bytesPerPixel + info.strategies.size() * info.layerBytesPerPixel);
+    kept += scoredImage;
   }
-  return pixels * (largestFrame + groundTruth + metrics + frames * perFrame + resolveImages * perResolve + largestRun +
-                   kept);
+  const std::uint64_t passInput = postPasses.empty() ? 0 : scoredImage;
+  return pixels * (largestFrame + eqaaPlanes + groundTruth + metrics + (frames + resolveImages) * scoredImage +
+                   passInput + largestRun + kept);
 }
 
 }  // namespace cli

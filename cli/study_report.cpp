@@ -89,11 +89,18 @@ nlohmann::ordered_json PassNamesJson(std::span<const passes::PassConfig> passes)
 void StagePassFiles(OutputDir& dir, const StudyPass& pass) {
   StageColour(dir, kImages + pass.image.folder + "/output.png", pass.image.colour);
   StageErrorFiles(dir, pass.image);
+}
+
+}  // namespace
+
+void StagePassLayers(OutputDir& dir, const StudyPass& pass) {
   for (const StudyPassRun& run : pass.runs) {
     const std::string folder = kImages + pass.image.folder + "/" + std::string(passes::StrategyName(run.strategy)) + "/";
     for (const passes::PassLayer& layer : run.layers) StageLayer(dir, folder, layer);
   }
 }
+
+namespace {
 
 std::string HeatFolder(const Study& study, std::size_t dispatch) {
   for (const StudyFrame& frame : study.frames) {

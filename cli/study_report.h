@@ -22,6 +22,10 @@ inline constexpr int kReportVersion = 1;
 // images/frames/<mode>/colour.png, frame.exr, eqaa.exr, fmask.png, error.exr, flip.png.
 void StageFrameFiles(OutputDir& dir, const StudyFrame& frame, const sim::FramePipeline& pipeline);
 
+// A pass's layers under every strategy: images/passes/<pass>/<strategy>/<layer>.png and .exr,
+// written as the pass finishes (StudyObserver::passDone), before the study drops them.
+void StagePassLayers(OutputDir& dir, const study::StudyPass& pass);
+
 // Everything else: ground truth and pass images, heat maps, report.json, counters.csv,
 // quality.csv and report.html.
 void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions& options);

@@ -242,6 +242,10 @@ class StudyRunner {
         result.variant = CompareVariant(earlier.name, result.image.colour, earlier.image.colour);
       }
     }
+    if (observer_.passDone) {
+      observer_.passDone(result);
+      for (StudyPassRun& run : result.runs) std::vector<passes::PassLayer>().swap(run.layers);
+    }
     study_.passes.push_back(std::move(result));
   }
 

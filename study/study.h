@@ -135,6 +135,9 @@ struct StudyObserver {
   scenes::ProgressCallback groundTruthProgress;
   // Once per mode, while its frame pipeline still holds the full surfaces.
   std::function<void(const StudyFrame&, const sim::FramePipeline&)> frameDone;
+  // After each pass, with every strategy's layers. When set, the study then drops the layers
+  // (StudyPassRun::layers ends empty), so a run holds one pass's layers at a time.
+  std::function<void(const StudyPass&)> passDone;
 };
 
 // "8S/4Z/2F" -> "8s-4z-2f", for folder names.

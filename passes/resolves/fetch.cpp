@@ -7,8 +7,10 @@
 namespace passes::resolves {
 namespace {
 
-// Only surfaces with UNKNOWN samples differ from the box resolve; 1S surfaces have no FMASK.
-bool ReadsEqaaModes(const fmask::EqaaConfig& mode) { return mode.fragments < mode.coverageSamples; }
+// Only surfaces with UNKNOWN samples differ from the box resolve (1S and MSAA surfaces have none);
+// on a 1F surface every sample reads the one fragment, which is also the box resolve's only known
+// colour, so the two are equal by definition (docs/craa.md).
+bool ReadsEqaaModes(const fmask::EqaaConfig& mode) { return mode.fragments > 1 && mode.fragments < mode.coverageSamples; }
 
 class FetchResolve final : public Resolve {
  public:
@@ -28,7 +30,7 @@ const ResolveInfo& FetchInfo() {
       .description = "the shader resolve through the fetch path: mean of every sample's fetch, UNKNOWN reading "
                      "fragment 0 (hw-facts §1.4)",
       .source = "passes/resolves/fetch.h",
-      .surfaces = "EQAA surfaces (F < S)",
+      .surfaces = "EQAA surfaces with 1 < F < S",
       .reads = ReadsEqaaModes};
   return info;
 }
