@@ -51,7 +51,8 @@ TEST_F(CliFrameSetup, FrameDrawsThePrepassAndRecordsTheSettings) {
   EXPECT_EQ(json["configuration"]["draw_order"], "front-to-back");
   EXPECT_EQ(json["configuration"]["depth_prepass"], true);
   EXPECT_EQ(json["configuration"]["max_zplanes"], 0);
-  ASSERT_EQ(json["dispatches"].size(), 2u);
+  ASSERT_EQ(json["dispatches"].size(), 3u);  // the pre-pass, the material draw, the box resolve
+  EXPECT_EQ(json["dispatches"][2]["name"], "frame/resolve");
   const nlohmann::json& prepass = json["dispatches"][0];
   EXPECT_EQ(prepass["name"], "frame/depth-prepass");
   EXPECT_EQ(prepass["counters"]["lanes/launched"], 0);
@@ -75,7 +76,9 @@ TEST_F(CliFrameSetup, RunCarriesTheSettingsIntoEveryFrame) {
   EXPECT_EQ(report["configuration"]["depth_prepass"], true);
   EXPECT_EQ(report["configuration"]["max_zplanes"], 0);
   const nlohmann::json& dispatches = report["dispatches"]["dispatches"];
-  ASSERT_EQ(dispatches.size(), 4u) << "a pre-pass and a material draw per mode";
+  std::size_t resolves = 0;
+  for (const nlohmann::json& frame : report["frames"]) resolves += frame["resolves"].size();
+  ASSERT_EQ(dispatches.size(), 6u + resolves) << "a pre-pass, a material draw and the box resolve per mode";
   ASSERT_EQ(report["frames"].size(), 2u);
   for (const nlohmann::json& frame : report["frames"]) {
     const std::size_t draw = frame["draw_dispatch"].get<std::size_t>();
