@@ -11,6 +11,7 @@
 #include "cli/common_options.h"
 #include "cli/frame_options.h"
 #include "passes/registry.h"
+#include "passes/craa/craa_lut.h"
 #include "passes/resolve.h"
 
 namespace cli {
@@ -107,6 +108,12 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
                   "comma-separated: " + JoinNames(passes::ResolveNames()) + ", all or none (docs/craa.md)")
       ->type_name("LIST")
       ->capture_default_str();
+  command
+      .add_option("--lut-configurations", options.lutConfigurations,
+                  "Synthetic configurations the CRAA LUT of each sample pattern is fitted to, as `aasim craa-lut "
+                  "--configurations` (fewer: faster, coarser; tables are cached per count) [default: the "
+                  "generator's, 960000]")
+      ->check(CLI::Range(std::int64_t{1}, passes::craa::kMaxLutConfigurations));
   command
       .add_option("--post", options.post,
                   "Post passes, comma-separated, each NAME[:key=value,...], run under every dispatch "
@@ -306,6 +313,7 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.policy = options.policy;
   config.comparedPolicies = options.comparedPolicies;
   config.resolves = options.resolveNames;
+  config.tableConfigurations = options.lutConfigurations;
   config.gpu = options.gpu;
   config.flush = WaveFlushByName(options.flush);
   config.drawOrder = options.setup.Order();

@@ -41,6 +41,7 @@ struct RunCommandOptions {
   std::string pattern = "eqaa";
   std::string policy = "hraa";
   std::string resolves = "all";          // registered resolves run on the modes they read
+  std::int64_t lutConfigurations = 0;    // the CRAA LUT's fit; 0 = the generator's default
   std::string comparePolicies = "none";  // further policies the EQAA modes are drawn under
   std::string gpu;  // default set by AddRunCommand (AddMachineOptions)
   std::string flush = "mix";

@@ -597,6 +597,8 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"policy", options.policy},
           {"compared_policies", options.comparedPolicies},
           {"resolves", options.resolveNames},
+          {"lut_configurations", options.lutConfigurations == 0 ? nlohmann::ordered_json(nullptr)
+                                                                : nlohmann::ordered_json(options.lutConfigurations)},
           {"gpu", options.gpu},
           {"flush", options.flush},
           {"draw_order", options.setup.drawOrder},

@@ -64,7 +64,7 @@ TEST_F(CliFrameSetup, FrameDrawsThePrepassAndRecordsTheSettings) {
 
 TEST_F(CliFrameSetup, RunCarriesTheSettingsIntoEveryFrame) {
   std::vector<std::string> args = {"run",          "--quick",    "--width",  "96",
-                                   "--height",     "64",         "--gt-samples", "4",
+                                   "--height",     "64",         "--gt-samples", "4", "--lut-configurations", "20000",
                                    "--modes",      "8S/4Z/1F,8S/8Z/1F", "--post",   "none",
                                    "--cache",      (scratch_ / "cache").string(), "--progress", "never",
                                    "--out",        (scratch_ / "out").string()};

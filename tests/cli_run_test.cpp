@@ -47,7 +47,7 @@ const std::vector<std::string> kModes = [] {
 std::vector<std::string> SmallRun(const fs::path& scratch, const fs::path& out, const std::string& threads) {
   return {"run",       "--quick", "--width",   "160",   "--height",         "96",
           "--gt-samples", "16",   "--threads", threads, "--cache",          (scratch / "cache").string(),
-          "--progress", "never",  "--out",     out.string()};
+          "--progress", "never",  "--out",     out.string(), "--lut-configurations", "20000"};
 }
 
 // `--post all` with the default modes: every registered pass those frames feed (SMAA S2x needs a
