@@ -262,9 +262,11 @@ void ExpectOldOrNewSet(const std::vector<std::string>& command, bool determinist
 }
 
 TEST_F(CliOutputCommit, SignalDuringRunLeavesTheOldOrTheNewSet) {
-  ExpectOldOrNewSet(
-      {"run", "--quick", "--width", "160", "--height", "96", "--cache", (scratch_ / "cache").string()}, false,
-      scratch_, 8);
+  // A frame of each kind (aliased, EQAA, 1F with the CRAA resolves) and two passes: the whole
+  // output set's shape at a fraction of the default study's time (which is 8 modes and every pass).
+  ExpectOldOrNewSet({"run", "--quick", "--width", "160", "--height", "96", "--modes", "1S/1Z/1F,8S/4Z/2F,8S/8Z/1F",
+                     "--post", "demo,smaa", "--lut-configurations", "20000", "--cache", (scratch_ / "cache").string()},
+                    false, scratch_, 8);
 }
 
 TEST_F(CliOutputCommit, SignalDuringFixturesLeavesTheOldOrTheNewSet) {
