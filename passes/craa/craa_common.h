@@ -44,6 +44,24 @@ inline void CheckSurface(const ResolveInfo& info, const fmask::EqaaSurface& surf
   }
 }
 
+// One full-screen dispatch `name` resolving `surface` into a new linear RGBA texture.
+// `bindPixel(dispatch, eqaa)` binds whatever else the kernel reads and returns the per-lane
+// function (const sim::PixelLane&) -> glm::vec4.
+template <typename BindPixel>
+sim::Texture2D<glm::vec4> RunResolveDispatch(sim::Machine& machine, const fmask::EqaaSurface& surface,
+                                             const std::string& name, const sim::KernelInfo& kernel,
+                                             BindPixel&& bindPixel) {
+  sim::Texture2D<glm::vec4> colour(name, surface.Width(), surface.Height(), 4);
+  const sim::EqaaResources resources(surface);
+  sim::Dispatch dispatch(name, kernel);
+  const sim::EqaaView eqaa = dispatch.Read(resources);
+  const auto pixel = bindPixel(dispatch, eqaa);
+  const sim::RwTextureView<glm::vec4> out = dispatch.ReadWrite(colour);
+  machine.FullScreen(dispatch, {.width = surface.Width(), .height = surface.Height()},
+                     [&](sim::PixelLane& lane) { out.Store(lane, lane.x, lane.y, pixel(lane)); });
+  return colour;
+}
+
 // The stored fragment of the neighbour on `side`; clamp addressing at the screen's border.
 template <typename Lane>
 glm::vec4 Neighbour(const sim::EqaaView& eqaa, const Lane& lane, Side side) {

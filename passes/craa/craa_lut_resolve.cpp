@@ -103,16 +103,13 @@ class LutResolve final : public Resolve {
 
   sim::Texture2D<glm::vec4> Run(sim::Machine& machine, const fmask::EqaaSurface& surface) override {
     CheckSurface(LutInfo(), surface, pattern_);
-    sim::Texture2D<glm::vec4> colour("resolve/craa-lut", surface.Width(), surface.Height(), 4);
-    const sim::EqaaResources resources(surface);
-    sim::Dispatch dispatch("resolve/craa-lut", kLutKernel);
-    const sim::EqaaView eqaa = dispatch.Read(resources);
-    const sim::BufferView<std::uint16_t> table = dispatch.Read(table_);
-    const sim::RwTextureView<glm::vec4> out = dispatch.ReadWrite(colour);
-    machine.FullScreen(dispatch, {.width = surface.Width(), .height = surface.Height()}, [&](sim::PixelLane& lane) {
-      out.Store(lane, lane.x, lane.y, LutPixel(eqaa, table, samples_, tables_, lane));
-    });
-    return colour;
+    return RunResolveDispatch(machine, surface, "resolve/craa-lut", kLutKernel,
+                              [&](sim::Dispatch& dispatch, const sim::EqaaView& eqaa) {
+                                const sim::BufferView<std::uint16_t> table = dispatch.Read(table_);
+                                return [this, eqaa, table](const sim::PixelLane& lane) {
+                                  return LutPixel(eqaa, table, samples_, tables_, lane);
+                                };
+                              });
   }
 
  private:

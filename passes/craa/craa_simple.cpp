@@ -36,15 +36,10 @@ class SimpleResolve final : public Resolve {
 
   sim::Texture2D<glm::vec4> Run(sim::Machine& machine, const fmask::EqaaSurface& surface) override {
     CheckSurface(SimpleInfo(), surface, pattern_);
-    sim::Texture2D<glm::vec4> colour("resolve/craa-simple", surface.Width(), surface.Height(), 4);
-    const sim::EqaaResources resources(surface);
-    sim::Dispatch dispatch("resolve/craa-simple", kSimpleKernel);
-    const sim::EqaaView eqaa = dispatch.Read(resources);
-    const sim::RwTextureView<glm::vec4> out = dispatch.ReadWrite(colour);
-    machine.FullScreen(dispatch, {.width = surface.Width(), .height = surface.Height()}, [&](sim::PixelLane& lane) {
-      out.Store(lane, lane.x, lane.y, SimplePixel(eqaa, pattern_, lane));
-    });
-    return colour;
+    return RunResolveDispatch(machine, surface, "resolve/craa-simple", kSimpleKernel,
+                              [&](sim::Dispatch&, const sim::EqaaView& eqaa) {
+                                return [&, eqaa](const sim::PixelLane& lane) { return SimplePixel(eqaa, pattern_, lane); };
+                              });
   }
 
  private:
