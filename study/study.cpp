@@ -8,12 +8,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <map>
+#include <memory>
 #include <ostream>
 #include <stdexcept>
 #include <type_traits>
 
 #include <oneapi/tbb/global_control.h>
-#include <oneapi/tbb/parallel_for.h>
 
 #include "sim/formats.h"
 
@@ -153,7 +154,6 @@ class StudyRunner {
     sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode, policy));
     StudyFrame frame = DrawFrame(mode, fmask::EqaaName(eqaa) + " " + policy, "frames/" + ModeSlug(eqaa) + "-" + policy,
                                  pipeline);
-    frame.comparedPolicy = true;
     if (observer_.frameDone) observer_.frameDone(frame, pipeline);
     study_.frames.push_back(std::move(frame));
   }
@@ -186,15 +186,26 @@ class StudyRunner {
       StudyResolve resolve{.name = name,
                            .image = {frame.image.label + " " + name, frame.image.folder + "/" + name, {"resolve", 1, 1}, {}},
                            .firstDispatch = study_.dispatches.size()};
-      const std::unique_ptr<passes::Resolve> kernel =
-          Step(observer_, "table " + frame.image.label + " " + name, [&] { return registered.make(context); });
-      resolve.image.colour = Step(observer_, "resolve " + resolve.image.label, [&] { return kernel->Run(machine_, pipeline.Eqaa()); });
+      passes::Resolve& kernel = ResolveFor(registered, mode, context);
+      resolve.image.colour = Step(observer_, "resolve " + resolve.image.label, [&] { return kernel.Run(machine_, pipeline.Eqaa()); });
       TakeDispatches(machine_, study_.dispatches, frame.image.label);
       resolve.endDispatch = study_.dispatches.size();
       resolve.image.quality = Step(observer_, "metrics " + resolve.image.label,
                                    [&] { return ScoreAgainstGroundTruth(resolve.image.colour, study_.groundTruth); });
       frame.resolves.push_back(std::move(resolve));
     }
+  }
+
+  // One instance per resolve and mode, made (its tables derived) once however many policies draw
+  // the mode.
+  passes::Resolve& ResolveFor(const passes::RegisteredResolve& registered, std::size_t mode,
+                              const passes::ResolveContext& context) {
+    std::unique_ptr<passes::Resolve>& made = resolves_[{std::string(registered.info().name), mode}];
+    if (!made) {
+      made = Step(observer_, "table " + fmask::EqaaName(config_.modes[mode]) + " " + std::string(registered.info().name),
+                  [&] { return registered.make(context); });
+    }
+    return *made;
   }
 
   bool FeedsAPass(std::size_t mode) const {
@@ -265,6 +276,7 @@ class StudyRunner {
   const StudyObserver& observer_;
   sim::Machine machine_;
   Study study_;
+  std::map<std::pair<std::string, std::size_t>, std::unique_ptr<passes::Resolve>> resolves_;
 };
 
 }  // namespace

@@ -58,7 +58,6 @@ struct StudyFrame {
   fmask::FragmentCounters fragments{};
   UnknownSamples unknown{};      // at the end of the frame
   std::size_t drawDispatch = 0;  // index into Study::dispatches; the box resolve is the next one
-  bool comparedPolicy = false;   // drawn again under one of ExperimentConfig::comparedPolicies
 };
 
 struct StudyPassRun {

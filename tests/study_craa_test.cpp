@@ -68,6 +68,31 @@ TEST(StudyCraa, OnPixelCrossingTheLutBeatsTheSimpleResolveWhichBeatsThe1xBox) {
   EXPECT_GT(rows[1].unknown.Total(), 0u);
 }
 
+// --compare-policies: every EQAA mode drawn again under each further policy, its frame labelled with
+// the policy, resolved like the others; the aliased mode is not redrawn.
+TEST(StudyCraa, ComparedPoliciesDrawTheEqaaModesAgain) {
+  ExperimentConfig config;
+  config.scene = "builtin:default";
+  config.width = 96;
+  config.height = 64;
+  config.modes = {{1, 1, 1}, {8, 4, 1}};
+  config.comparedPolicies = {"keep-on-reject"};
+  config.resolves = {"craa-simple"};
+  config.groundTruth.samplesPerPixel = 4;
+  config.gpu = std::string(sim::kDefaultGpuName);
+  const Study study = RunStudy(LoadStudyInputs(config), config);
+  ASSERT_EQ(study.frames.size(), 3u);
+  EXPECT_EQ(study.frames[2].image.label, "8S/4Z/1F keep-on-reject");
+  EXPECT_EQ(study.frames[2].policy, "keep-on-reject");
+  EXPECT_EQ(study.frames[1].policy, "hraa");
+  EXPECT_EQ(study.frames[2].image.folder, "frames/8s-4z-1f-keep-on-reject");
+  ASSERT_EQ(study.frames[2].resolves.size(), 1u);
+  const std::vector<EqaaStudyRow> rows = EqaaStudyRows(study);
+  ASSERT_EQ(rows.size(), 5u);  // 1S box; 8S/4Z/1F box and craa-simple under each policy
+  EXPECT_EQ(rows[3].policy, "keep-on-reject");
+  EXPECT_EQ(rows[4].resolve, "craa-simple");
+}
+
 // Every registered resolve on every legal mode it reads: the same image and counters on 1 and 2
 // host threads.
 TEST(StudyCraa, EveryResolveIsIdenticalOnOneAndTwoThreads) {
