@@ -255,7 +255,9 @@ ReportSection RunSection(const Study& study, const RunCommandOptions& options) {
       "Scene " + study.sceneName + " (" + std::to_string(study.triangles) + " triangles) at " +
           std::to_string(options.width) + "x" + std::to_string(options.height) + ", rendered on the modelled GPU '" +
           study.gpu.name + "' under " + modes + " (pattern " + options.pattern + ", arbitration policy " +
-          options.policy + ").",
+          options.policy + "; draw order " + options.setup.drawOrder +
+          (options.setup.depthPrepass ? ", a depth pre-pass then an EQUAL draw" : ", no depth pre-pass") +
+          ", at most " + std::to_string(options.setup.maxZPlanes) + " Z planes per tile: docs/eqaa.md \"CRAA setup\").",
       "Ground truth: Embree, " + std::to_string(truth.image.samplesPerPixel) +
           " stratified rays per pixel, box filter, the same material model; " +
           std::to_string(passes::CountSelected(truth.edgeMask)) + " edge pixels (pixels whose rays saw more than one "
