@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "passes/registry.h"
+#include "passes/resolve.h"
 
 namespace cli {
 namespace {
@@ -45,6 +46,17 @@ void PrintPass(const passes::PassInfo& info, std::ostream& out) {
   if (info.settings.empty()) out << "  (no settings)\n";
 }
 
+// Resolves are not post passes (docs/passes.md "Resolves"), but a user choosing `aasim run
+// --resolves` looks for them here too.
+void PrintResolves(std::ostream& out) {
+  out << "\nResolves of the EQAA surface (aasim run --resolves; docs/craa.md), besides the frame's box resolve:\n";
+  for (const passes::RegisteredResolve& resolve : passes::AllResolves()) {
+    const passes::ResolveInfo& info = resolve.info();
+    out << info.name << ": " << info.description << " (" << info.source << ")\n"
+        << "  reads       " << info.surfaces << "\n";
+  }
+}
+
 }  // namespace
 
 CLI::App* AddPassesCommand(CLI::App& app, PassesCommandOptions& options) {
@@ -73,11 +85,13 @@ void RunPassesCommand(const PassesCommandOptions& options, std::ostream& out) {
     if (i > 0) out << '\n';
     PrintPass(passes::PassByName(names[i]).info(), out);
   }
+  if (options.names.empty()) PrintResolves(out);
 }
 
 std::string DescribeAllPasses() {
   std::ostringstream text;
-  RunPassesCommand({}, text);
+  const std::vector<std::string> names = passes::PassNames();
+  RunPassesCommand({.names = names}, text);
   return text.str();
 }
 

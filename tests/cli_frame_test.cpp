@@ -28,6 +28,7 @@
 #include "study/frame_scene.h"
 #include "cli/frame_options.h"
 #include "cli_test_util.h"
+#include "passes/resolve.h"
 #include "fmask/eqaa_surface.h"
 #include "raster/counters.h"
 #include "scenes/shading.h"
@@ -316,6 +317,11 @@ TEST_F(CliFrameTest, PassesListsTheRegistryWithSettings) {
   ASSERT_EQ(run.exitCode, 0) << run.err;
   for (const std::string& name : passes::PassNames()) EXPECT_NE(run.out.find(name + ": "), std::string::npos) << name;
   EXPECT_NE(run.out.find("threshold=0.1  (0, 1]"), std::string::npos) << run.out;
+  // The resolves follow, each with what it reads; naming passes shows only those passes.
+  for (const std::string& name : passes::ResolveNames()) EXPECT_NE(run.out.find(name + ": "), std::string::npos) << name;
+  EXPECT_NE(run.out.find("  reads       1F surfaces of 2 to 16 samples"), std::string::npos) << run.out;
+  const CommandResult one = RunAasim({"passes", "demo"}, scratch_);
+  EXPECT_EQ(one.out.find("Resolves of the EQAA surface"), std::string::npos) << one.out;
   const CommandResult unknown = RunAasim({"passes", "nosuch"}, scratch_);
   EXPECT_EQ(unknown.exitCode, 2);
   EXPECT_EQ(unknown.err.rfind("aasim passes: unknown post pass 'nosuch'", 0), 0u) << unknown.err;
