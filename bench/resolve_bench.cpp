@@ -18,6 +18,7 @@
 #include <oneapi/tbb/info.h>
 
 #include "bench/bench_util.h"
+#include "cli/run_options.h"
 #include "passes/resolve.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
@@ -84,23 +85,6 @@ double EstimatedUs(const std::vector<sim::DispatchReport>& reports) {
   return us;
 }
 
-std::vector<fmask::EqaaConfig> ParseModes(const std::string& list) {
-  std::vector<fmask::EqaaConfig> modes;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const std::size_t end = std::min(list.find(',', start), list.size());
-    fmask::EqaaConfig mode;
-    if (std::sscanf(list.substr(start, end - start).c_str(), "%dS/%dZ/%dF", &mode.coverageSamples, &mode.depthSamples,
-                    &mode.fragments) != 3) {
-      throw std::invalid_argument("--modes: '" + list.substr(start, end - start) + "' is not S/Z/F");
-    }
-    fmask::ValidateEqaaConfig(mode);
-    modes.push_back(mode);
-    start = end + 1;
-  }
-  return modes;
-}
-
 int RunBench(const BenchOptions& options) {
   const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
   const study::FrameScene scene = study::ToFrameScene(scenes::LoadScene(options.scene, aspect), aspect);
@@ -111,7 +95,7 @@ int RunBench(const BenchOptions& options) {
   std::printf("  %-10s %-12s %10s %10s %12s %14s\n", "mode", "resolve", "host ms", "1-thread", "read B/px", "estimated µs");
   nlohmann::ordered_json results = nlohmann::ordered_json::array();
   bool deterministic = true;
-  for (const fmask::EqaaConfig& mode : ParseModes(options.modes)) {
+  for (const fmask::EqaaConfig& mode : cli::ParseEqaaModes(options.modes)) {
     sim::Machine machine(gpu);
     sim::FrameSettings settings;
     settings.eqaa = mode;
