@@ -274,6 +274,30 @@ TEST_F(CliRunTest, SameCountersQualityAndImagesWithOneThread) {
   EXPECT_FALSE(Report()["ground_truth"]["cache_hit"].get<bool>());
 }
 
+// The EQAA study's options: a bad name, a repeated one, the run's own policy, a table size out of
+// range are usage errors (exit 2, one line naming the option) that create no output.
+TEST(CliRun, BadResolveAndPolicyListsAreUsageErrors) {
+  const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_run_lists_" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--resolves", "craa-foo"}, "--resolves: unknown name 'craa-foo'"},
+      {{"--resolves", "fetch,fetch"}, "--resolves: fetch is named twice"},
+      {{"--compare-policies", "hraa"}, "--compare-policies: hraa is already the run's --policy"},
+      {{"--compare-policies", "nosuch"}, "--compare-policies: unknown name 'nosuch'"},
+      {{"--lut-configurations", "0"}, "--lut-configurations"},
+      {{"--lut-configurations", "9999999"}, "--lut-configurations"}};
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args = {"run", "--quick", "--out", (scratch / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CommandResult run = RunAasim(args, scratch);
+    EXPECT_EQ(run.exitCode, 2) << extra.front();
+    EXPECT_NE(run.err.find(message), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(scratch / "out")) << extra.front();
+  }
+  fs::remove_all(scratch);
+}
+
 TEST(CliRun, HelpExplainsEveryOptionAndTheDefaultJob) {
   const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_run_help_" + std::to_string(::getpid()));
   fs::create_directories(scratch);
@@ -281,7 +305,7 @@ TEST(CliRun, HelpExplainsEveryOptionAndTheDefaultJob) {
   EXPECT_EQ(run.exitCode, 0);
   for (const char* option : {"--scene", "--width", "--height", "--quick", "--modes", "--pattern", "--policy", "--post",
                              "--gpu", "--flush", "--gt-samples", "--cache", "--no-cache", "--progress", "--threads",
-                             "--out"}) {
+                             "--out", "--resolves", "--compare-policies", "--lut-configurations"}) {
     EXPECT_NE(run.out.find(option), std::string::npos) << option;
   }
   const CommandResult top = RunAasim({"--help"}, scratch);
