@@ -20,6 +20,11 @@ std::optional<Strategy> StrategyByName(std::string_view name) {
   return *found;
 }
 
+glm::vec2 PatternJitter(const raster::SamplePattern& pattern) {
+  const raster::SampleOffset offset = pattern.Offset(0, 0);
+  return glm::vec2(static_cast<float>(offset.x), static_cast<float>(offset.y)) / 16.0f;
+}
+
 FrameInputs FrameInputsOf(const sim::FramePipeline& frame) {
   return {.colour = &frame.Colour(),
           .depth = &frame.Depth(),
@@ -27,8 +32,9 @@ FrameInputs FrameInputsOf(const sim::FramePipeline& frame) {
           .objectId = &frame.ObjectId(),
           .velocity = &frame.Velocity(),
           .eqaa = &frame.Eqaa(),
+          .pattern = &frame.Settings().pattern,
           .frameIndex = frame.FrameIndex(),
-          .jitter = glm::vec2(0.0f)};
+          .jitter = PatternJitter(frame.Settings().pattern)};
 }
 
 PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture) {

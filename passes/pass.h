@@ -18,6 +18,7 @@
 #include <glm/vec4.hpp>
 
 #include "passes/settings.h"
+#include "raster/sample_pattern.h"
 #include "sim/dispatch.h"
 #include "sim/frame.h"
 
@@ -40,14 +41,23 @@ struct FrameInputs {
   const sim::Texture2D<std::uint32_t>* objectId = nullptr;
   const sim::Texture2D<glm::vec2>* velocity = nullptr;
   const fmask::EqaaSurface* eqaa = nullptr;
+  // The sample pattern the frame was drawn with (a jitter schedule's pattern for this frame).
+  const raster::SamplePattern* pattern = nullptr;
   int frameIndex = 0;
-  glm::vec2 jitter{0.0f};  // this frame's projection jitter in pixels
+  // This frame's projection jitter in pixels, +y down: the offset of sample 0 of quad pixel 0
+  // (a 1-sample schedule's whole jitter when the pattern is the same in all quad pixels).
+  glm::vec2 jitter{0.0f};
+  // Time since the previous frame, for frame-rate-aware blends (alpha = exp(-dt / tau), aa-facts
+  // §5.4): the run's fixed frame rate.
+  double frameSeconds = 1.0 / 60.0;
 
   int Width() const { return colour->Width(); }
   int Height() const { return colour->Height(); }
 };
 
-// Every target of a rendered frame, and its index in its sequence.
+// Sample 0 of quad pixel 0, in pixels (+y down): FrameInputs::jitter.
+glm::vec2 PatternJitter(const raster::SamplePattern& pattern);
+// Every target of a rendered frame, its pattern and its index in its sequence.
 FrameInputs FrameInputsOf(const sim::FramePipeline& frame);
 
 enum class FrameInput : std::uint8_t { Colour, Depth, Normal, ObjectId, Velocity, Eqaa };
@@ -135,6 +145,9 @@ struct PassInfo {
   // every strategy it runs, after the pass's instance is gone, so the memory guard adds them up.
   std::uint64_t layerBytesPerPixel = 0;
   bool temporal = false;  // keeps history across frames
+  // The per-frame sample-pattern schedule the pass is built for (raster/jitter_schedule.h:
+  // "none", "halton8", "t2x", ...): the study renders its sequence with it. Spatial passes: "none".
+  std::string_view jitter = "none";
   // The coverage samples of the EQAA surface the pass reads (S2x: 2); 0 when it reads none. The
   // study runs such a pass on the first of its frames with that many samples.
   int eqaaSamples = 0;
