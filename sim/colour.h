@@ -61,4 +61,15 @@ inline float MiniEngineFxaaLuma(const glm::vec3& linear) {
   return std::log2(1.0f + 15.0f * y) / 4.0f;
 }
 
+// YCoCg, the space temporal passes clamp and clip history in (aa-facts §5.2, Lottes in §5.4):
+// Y = R/4 + G/2 + B/4, Co = R/2 - B/2, Cg = -R/4 + G/2 - B/4, and its exact inverse.
+inline glm::vec3 RgbToYCoCg(const glm::vec3& rgb) {
+  return {0.25f * rgb.r + 0.5f * rgb.g + 0.25f * rgb.b, 0.5f * rgb.r - 0.5f * rgb.b,
+          -0.25f * rgb.r + 0.5f * rgb.g - 0.25f * rgb.b};
+}
+inline glm::vec3 YCoCgToRgb(const glm::vec3& ycocg) {
+  const float y = ycocg.x, co = ycocg.y, cg = ycocg.z;
+  return {y + co - cg, y + cg, y - co - cg};
+}
+
 }  // namespace sim
