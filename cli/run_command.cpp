@@ -99,13 +99,18 @@ void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std:
   const study::ExperimentConfig config = ExperimentFrom(resolved);
   const study::StudyInputs inputs = study::LoadStudyInputs(config);
   OutputDir dir = OpenOutOption(resolved.out);
-  const Study study = study::RunStudy(
-      inputs, config,
-      Observer(
-          resolved, log,
-          [&](const StudyFrame& frame, const sim::FramePipeline& pipeline) { StageFrameFiles(dir, frame, pipeline); },
-          [&](const StudyPass& pass) { StagePassLayers(dir, pass); }));
-  StageStudyFiles(dir, study, resolved);
+  SequenceImages sequenceImages(dir);
+  study::StudyObserver observer = Observer(
+      resolved, log,
+      [&](const StudyFrame& frame, const sim::FramePipeline& pipeline) {
+        StageFrameFiles(dir, frame, pipeline);
+        if (!sequenceImages.HasRegion()) SetSequenceRegion(sequenceImages, frame);
+      },
+      [&](const StudyPass& pass) { StagePassLayers(dir, pass); });
+  observer.sequenceImage = [&](const study::SequenceGroup* group, const study::SequenceTrack* track, int frame,
+                               const sim::Texture2D<glm::vec4>& image) { sequenceImages.Add(group, track, frame, image); };
+  const Study study = study::RunStudy(inputs, config, observer);
+  StageStudyFiles(dir, study, resolved, &sequenceImages);
   dir.Commit("report.json");
   PrintSummary(summary, study, resolved, dir.Path());
   for (const StudyPass& pass : study.passes) {

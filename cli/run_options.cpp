@@ -13,6 +13,8 @@
 #include "passes/registry.h"
 #include "passes/craa/craa_lut.h"
 #include "passes/resolve.h"
+#include "raster/jitter_schedule.h"
+#include "scenes/motion.h"
 
 namespace cli {
 namespace {
@@ -132,6 +134,41 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
       ->capture_default_str();
 }
 
+// Frames a run may ask for: each is drawn and scored once per jitter schedule.
+constexpr int kMaxFrames = 1024;
+
+void AddSequenceOptions(CLI::App& command, RunCommandOptions& options) {
+  command
+      .add_option("--frames", options.frames,
+                  "Frames of a multi-frame run (docs/temporal.md): every post pass followed over N frames along "
+                  "--camera-path with the scene's moving objects, temporal passes on their jitter schedules, "
+                  "scored per frame against a ground-truth sequence, with flicker, ghosting and convergence; "
+                  "1 = the single-frame study only")
+      ->check(CLI::Range(1, kMaxFrames))
+      ->capture_default_str();
+  command
+      .add_option("--camera-path", options.cameraPath,
+                  "Camera motion over the frames: " + JoinNames(scenes::CameraPathKindNames()) +
+                      " (scenes/motion.h; frame 0 is the scene's camera)")
+      ->check(CLI::IsMember(scenes::CameraPathKindNames()))
+      ->capture_default_str();
+  command
+      .add_option("--camera-speed", options.cameraSpeed,
+                  "Speed of --camera-path per frame: orbit degrees, pan pixels (at the target's depth), dolly "
+                  "fraction of the distance [default: the path's own, 0.25 / 0.5 / 0.005]")
+      ->check(CLI::Range(-1000.0, 1000.0));
+  command
+      .add_option("--jitter", options.jitter,
+                  "Jitter schedule for every temporal pass instead of its own: " +
+                      JoinNames(raster::JitterScheduleNames()) + " (raster/jitter_schedule.h)")
+      ->check(CLI::IsMember(raster::JitterScheduleNames()));
+  command
+      .add_option("--fps", options.framesPerSecond,
+                  "Simulated frame rate: frame-rate-aware passes blend with alpha = exp(-dt / tau), dt = 1 / fps")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+}
+
 void AddGroundTruthOptions(CLI::App& command, RunCommandOptions& options) {
   command
       .add_option("--gt-samples", options.groundTruthSamples,
@@ -172,9 +209,31 @@ void CheckGroundTruthSamples(int samples) {
   }
 }
 
+// A temporal pass's schedule must draw the samples it reads, and sequence options need frames.
+void CheckSequence(const CLI::App& command, const RunCommandOptions& options) {
+  for (const char* option : {"--camera-path", "--camera-speed", "--jitter", "--fps"}) {
+    if (options.frames == 1 && command.count(option) > 0) {
+      throw CLI::ValidationError(std::string(option) + ": only a multi-frame run uses it; add --frames N (N > 1)");
+    }
+  }
+  if (options.frames == 1) return;
+  for (const passes::PassConfig& pass : options.postPasses) {
+    const passes::PassInfo& info = pass.Info();
+    if (!info.temporal) continue;
+    const std::string schedule = options.jitter.empty() ? std::string(info.jitter) : options.jitter;
+    const int samples = raster::JitterScheduleSamples(schedule);
+    if (info.eqaaSamples != 0 && samples != info.eqaaSamples) {
+      throw CLI::ValidationError("--jitter " + schedule + ": pass " + std::string(info.name) + " reads " +
+                                 std::to_string(info.eqaaSamples) + " samples per pixel, the schedule draws " +
+                                 std::to_string(samples));
+    }
+  }
+}
+
 void CheckMemory(const RunCommandOptions& options) {
-  const std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, options.postPasses,
-                                               options.resolveNames, options.comparedPolicies.size());
+  std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, options.postPasses,
+                                         options.resolveNames, options.comparedPolicies.size());
+  if (options.frames > 1) bytes += EstimateSequenceBytes(ExperimentFrom(options));
   if (bytes > kMaxRunBytes) {
     throw CLI::ValidationError("--width " + std::to_string(options.width) + " --height " +
                                std::to_string(options.height) + " --modes " + options.modes +
@@ -242,6 +301,7 @@ CLI::App* AddRunCommand(CLI::App& app, RunCommandOptions& options) {
   AddStudyOptions(*command, options);
   AddMachineOptions(*command, options.gpu, options.flush);
   AddFrameSetupOptions(*command, options.setup);
+  AddSequenceOptions(*command, options);
   AddGroundTruthOptions(*command, options);
   AddRunOutputOptions(*command, options);
   return command;
@@ -300,8 +360,23 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
   for (const NamedProgress& entry : kProgressModes) {
     if (entry.name == options.progress) options.progressMode = entry.mode;
   }
+  CheckSequence(command, options);
   CheckMemory(options);
 }
+
+namespace {
+scenes::CameraPath CameraPathFrom(const RunCommandOptions& options) {
+  scenes::CameraPath path;
+  path.kind = scenes::ParseCameraPathKind(options.cameraPath);
+  path.panImageHeight = options.height;
+  if (options.cameraSpeed == 0.0) return path;
+  const auto speed = static_cast<float>(options.cameraSpeed);
+  if (path.kind == scenes::CameraPathKind::Orbit) path.orbitDegreesPerFrame = speed;
+  if (path.kind == scenes::CameraPathKind::Pan) path.panPixelsPerFrame = speed;
+  if (path.kind == scenes::CameraPathKind::Dolly) path.dollyFractionPerFrame = speed;
+  return path;
+}
+}  // namespace
 
 study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   study::ExperimentConfig config;
@@ -322,6 +397,10 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.passes = options.postPasses;
   config.strategies = options.strategies;
   config.groundTruth.samplesPerPixel = options.groundTruthSamples;
+  config.sequence.frames = options.frames;
+  config.sequence.cameraPath = CameraPathFrom(options);
+  config.sequence.framesPerSecond = options.framesPerSecond;
+  config.sequence.jitterOverride = options.jitter;
   if (!options.noCache) {
     config.groundTruth.cache = options.cache;
     config.tableCache = std::filesystem::path(options.cache) / "tables";
@@ -364,6 +443,38 @@ std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::E
   const std::uint64_t passInput = postPasses.empty() ? 0 : scoredImage;
   return pixels * (largestFrame + eqaaPlanes + groundTruth + metrics + (frames + resolveImages) * scoredImage +
                    passInput + largestRun + kept);
+}
+
+}  // namespace cli
+
+namespace cli {
+
+std::uint64_t EstimateSequenceBytes(const study::ExperimentConfig& config) {
+  const std::uint64_t pixels = std::uint64_t(config.width) * std::uint64_t(config.height);
+  // Ground truth: colour, coverage, edge, edge mask and RGBA colour; this frame's and the last.
+  const std::uint64_t groundTruths = 2 * (sizeof(glm::vec3) + sizeof(float) + 1 + sizeof(float) + sizeof(glm::vec4));
+  // Per group: the pipeline, last frame's object ids, pixel ages and the reprojection.
+  std::vector<std::string> schedules;
+  std::uint64_t groups = 0;
+  for (const passes::PassConfig& pass : config.passes) {
+    const passes::PassInfo& info = pass.Info();
+    const std::string schedule =
+        !info.temporal ? "none" : (config.sequence.jitterOverride.empty() ? std::string(info.jitter) : config.sequence.jitterOverride);
+    if (std::find(schedules.begin(), schedules.end(), schedule) != schedules.end()) continue;
+    schedules.push_back(schedule);
+    const int samples = raster::JitterScheduleSamples(schedule);
+    const fmask::EqaaConfig mode = samples == 0 ? config.modes.front() : fmask::EqaaConfig{samples, samples, samples};
+    groups += EstimateFrameBytes(1, 1, mode, nullptr, 0) + sizeof(std::uint32_t) + 1 + sizeof(glm::vec2) + 1;
+  }
+  // Per technique (each group's frames and each pass): the last image and every frame's codes;
+  // per pass and strategy an instance alive for the whole sequence.
+  const std::uint64_t frameCodes = 3 * static_cast<std::uint64_t>(config.sequence.frames);
+  std::uint64_t techniques = schedules.size() * (sizeof(glm::vec4) + frameCodes);
+  for (const passes::PassConfig& pass : config.passes) {
+    const passes::PassInfo& info = pass.Info();
+    techniques += sizeof(glm::vec4) + frameCodes + info.strategies.size() * info.bytesPerPixel;
+  }
+  return pixels * (groundTruths + groups + techniques);
 }
 
 }  // namespace cli

@@ -51,6 +51,12 @@ struct RunCommandOptions {
   int groundTruthSamples = 256;
   std::string cache;  // default set by AddRunCommand: scenes::GroundTruthCache::DefaultDirectory
   bool noCache = false;
+  // A multi-frame run (study/sequence.h): frames, camera path, jitter override, frame rate.
+  int frames = 1;
+  std::string cameraPath = "still";
+  double cameraSpeed = 0.0;  // 0 = the path's default speed (scenes/motion.h)
+  std::string jitter;        // "" = each temporal pass's own schedule
+  double framesPerSecond = 60.0;
   std::string progress = "auto";
   int threads = 0;  // default set by AddRunCommand: every core
   std::string out = "out/report";
@@ -84,5 +90,9 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options);
 std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
                                std::span<const passes::PassConfig> postPasses,
                                std::span<const std::string> resolves = {}, std::size_t comparedPolicies = 0);
+// What a multi-frame run adds while its sequence runs (study/sequence_study.cpp): every group's
+// frame pipeline and reprojection state, every pass instance of every strategy alive for the
+// whole sequence, two ground truths, and per technique its last image and each frame's codes.
+std::uint64_t EstimateSequenceBytes(const study::ExperimentConfig& config);
 
 }  // namespace cli

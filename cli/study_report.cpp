@@ -294,10 +294,14 @@ ReportSection ImagesSection(const std::vector<Shown>& shown, int width, int heig
 
 // Where the first frame (the aliased one) is furthest from the ground truth by FLIP: one section
 // per region, every image cropped to it.
+// Crops are an eighth of the height rounded to whole 8x8 tiles, zoomed to about kCropDisplayPixels.
+int CropSize(int width, int height) { return std::min({std::max(8, height / 16 / 8 * 8), width, height}); }
+int CropZoom(int size) { return std::max(1, kCropDisplayPixels / size); }
+
 std::vector<ReportSection> CropSections(const Study& study, const std::vector<Shown>& shown, int width, int height) {
   if (study.frames.empty()) return {};
-  const int size = std::min({std::max(8, height / 16 / 8 * 8), width, height});
-  const int zoom = std::max(1, kCropDisplayPixels / size);
+  const int size = CropSize(width, height);
+  const int zoom = CropZoom(size);
   const std::string& aliased = study.frames.front().image.label;
   std::vector<ReportSection> sections;
   for (const PixelRect& rect :
@@ -608,6 +612,11 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"max_zplanes", options.setup.maxZPlanes},
           {"post", PassNamesJson(options.postPasses)},
           {"strategy", options.strategy},
+          {"frames", options.frames},
+          {"camera_path", options.cameraPath},
+          {"camera_speed", options.cameraSpeed == 0.0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cameraSpeed)},
+          {"jitter", options.jitter.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.jitter)},
+          {"fps", options.framesPerSecond},
           {"gt_samples", options.groundTruthSamples},
           {"cache", options.noCache ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cache)},
           {"threads", threads}};
@@ -640,10 +649,11 @@ nlohmann::ordered_json StudyJson(const Study& study, const RunCommandOptions& op
   for (const StudyFrame& frame : study.frames) json["frames"].push_back(FrameJson(frame, options));
   for (const StudyPass& pass : study.passes) json["passes"].push_back(PassJson(study, pass));
   json["sample_patterns"] = PatternErrorJson();
+  if (study.sequence) json["sequence"] = SequenceJson(*study.sequence);
   return json;
 }
 
-Report StudyHtml(const Study& study, const RunCommandOptions& options) {
+Report StudyHtml(const Study& study, const RunCommandOptions& options, const SequenceImages* sequenceImages) {
   const std::vector<Shown> shown = ShownImages(study, study.groundTruth.colour);
   const int width = options.width, height = options.height;
   Report report{"aasim report: " + study.sceneName, {}, RunConfigurationJson(options, study.threads).dump(2)};
@@ -655,12 +665,23 @@ Report StudyHtml(const Study& study, const RunCommandOptions& options) {
   report.sections.push_back(EqaaStudySection(study));
   if (!study.passes.empty()) report.sections.push_back(PassesComparedSection(study));
   for (const StudyPass& pass : study.passes) report.sections.push_back(PassSection(study, pass));
+  if (sequenceImages) {
+    for (ReportSection& section : SequenceSections(study, *sequenceImages)) report.sections.push_back(std::move(section));
+  }
   report.sections.push_back(DispatchesSection(study));
   report.sections.push_back(PatternErrorSection());
   return report;
 }
 
-void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions& options) {
+void SetSequenceRegion(SequenceImages& images, const StudyFrame& frame) {
+  const int width = frame.image.colour.Width(), height = frame.image.colour.Height();
+  const int size = CropSize(width, height);
+  const std::vector<PixelRect> hardest = HardestRegions(frame.image.quality.maps.flip, width, height, size, 1);
+  images.SetRegion(hardest.empty() ? PixelRect{0, 0, size, size} : hardest.front(), CropZoom(size));
+}
+
+void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions& options,
+                     const SequenceImages* sequenceImages) {
   StageGroundTruth(dir, study.groundTruth);
   for (const StudyPass& pass : study.passes) StagePassFiles(dir, pass);
   StageHeatMaps(dir, study);
@@ -668,7 +689,7 @@ void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions
   WriteText(dir.Stage("counters.csv"),
             DispatchReportsCsv(study.dispatches));
   WriteText(dir.Stage("quality.csv"), QualityCsv(study));
-  WriteText(dir.Stage("report.html"), RenderHtml(StudyHtml(study, options)));
+  WriteText(dir.Stage("report.html"), RenderHtml(StudyHtml(study, options, sequenceImages)));
 }
 
 }  // namespace cli

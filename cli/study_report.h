@@ -8,6 +8,7 @@
 #include "cli/output_dir.h"
 #include "cli/report_html.h"
 #include "cli/run_options.h"
+#include "cli/sequence_report.h"
 #include "study/study.h"
 
 namespace cli {
@@ -28,12 +29,16 @@ void StagePassLayers(OutputDir& dir, const study::StudyPass& pass);
 
 // Everything else: ground truth and pass images, heat maps, report.json, counters.csv,
 // quality.csv and report.html.
-void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions& options);
+// With a multi-frame run's images, report.html gains the sequence sections.
+void StageStudyFiles(OutputDir& dir, const Study& study, const RunCommandOptions& options,
+                     const SequenceImages* sequenceImages = nullptr);
+// The frame strips show the aliased frame's hardest region, as the report's first crop.
+void SetSequenceRegion(SequenceImages& images, const StudyFrame& frame);
 
 // The run's resolved options, echoed in report.json and at the end of report.html.
 nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, int threads);
 
 nlohmann::ordered_json StudyJson(const Study& study, const RunCommandOptions& options);
-Report StudyHtml(const Study& study, const RunCommandOptions& options);
+Report StudyHtml(const Study& study, const RunCommandOptions& options, const SequenceImages* sequenceImages = nullptr);
 
 }  // namespace cli

@@ -14,6 +14,7 @@
 #include "passes/resolve.h"
 #include "sim/draw_order.h"
 #include "sim/wave.h"
+#include "study/sequence.h"
 
 namespace study {
 
@@ -50,6 +51,8 @@ struct ExperimentConfig {
   // The strategies every pass runs under, among those it declares; empty = all it declares.
   std::vector<passes::Strategy> strategies;
   GroundTruthConfig groundTruth;
+  // Frames, camera path and jitter of a multi-frame run (frames > 1 adds StudySequence).
+  SequenceConfig sequence;
 };
 
 }  // namespace study

@@ -66,17 +66,27 @@ void AddTextures(const scenes::Scene& scene, FrameScene& frame) {
 
 }  // namespace
 
+namespace {
+std::vector<glm::vec3> WorldNormals(const scenes::Scene& scene) {
+  std::vector<glm::vec3> all;
+  all.reserve(scene.VertexCount());
+  for (const scenes::Mesh& mesh : scene.meshes) {
+    const std::vector<glm::vec3> normals = scenes::VertexNormals(mesh);
+    all.insert(all.end(), normals.begin(), normals.end());
+  }
+  return all;
+}
+}  // namespace
+
 FrameScene ToFrameScene(const scenes::Scene& scene, float aspect) {
   FrameScene frame;
   frame.clip = ToClipSpace(scene, aspect);
-  frame.normals.reserve(scene.VertexCount());
+  frame.normals = WorldNormals(scene);
   frame.objectIds.reserve(scene.TriangleCount());
   bool textured = false;
   for (const scenes::Mesh& mesh : scene.meshes) textured |= BaseColourTexture(scene, mesh) >= 0;
   for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
     const scenes::Mesh& source = scene.meshes[mesh];
-    const std::vector<glm::vec3> normals = scenes::VertexNormals(source);
-    frame.normals.insert(frame.normals.end(), normals.begin(), normals.end());
     frame.objectIds.insert(frame.objectIds.end(), source.indices.size() / 3,
                            static_cast<std::uint32_t>(mesh));
     frame.baseColours.push_back(BaseColourFactor(scene, mesh));
@@ -92,14 +102,21 @@ FrameScene ToFrameScene(const scenes::Scene& scene, float aspect) {
   return frame;
 }
 
+void MoveFrameScene(const scenes::Scene& moved, float aspect, FrameScene& frame) {
+  frame.clip = ToClipSpace(moved, aspect);
+  frame.normals = WorldNormals(moved);
+}
+
 void ApplyLighting(const scenes::Lighting& lighting, sim::FrameSettings& settings) {
   settings.towardsLight = lighting.towardsLight;
   settings.ambient = lighting.ambient;
 }
 
-sim::FrameGeometry FrameScene::Geometry() const {
+sim::FrameGeometry FrameScene::Geometry() const { return Geometry({}); }
+
+sim::FrameGeometry FrameScene::Geometry(std::span<const glm::vec4> previousClip) const {
   return {.clipPositions = clip.positions,
-          .previousClipPositions = {},
+          .previousClipPositions = previousClip,
           .normals = normals,
           .indices = clip.indices,
           .objectIds = objectIds,

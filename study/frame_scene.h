@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -48,6 +49,9 @@ struct FrameScene {
 
   // A still frame: no previous positions, so every velocity is zero. Valid while this lives.
   sim::FrameGeometry Geometry() const;
+  // A frame of a sequence: `previousClip` holds the same vertices' clip positions one frame
+  // earlier (ToClipSpace of the previous frame's scene), so the pipeline writes velocities.
+  sim::FrameGeometry Geometry(std::span<const glm::vec4> previousClip) const;
 };
 
 // The scene's light and ambient term, so the material kernel shades what the ground truth does.
@@ -55,5 +59,8 @@ void ApplyLighting(const scenes::Lighting& lighting, sim::FrameSettings& setting
 
 // Normals from scenes::VertexNormals: the mesh's own, else smooth ones from its triangles.
 FrameScene ToFrameScene(const scenes::Scene& scene, float aspect);
+// The same scene at another frame of its motion (scenes::SceneAt: same meshes, moved, another
+// camera): replaces the clip positions and normals, keeps ids, colours and textures.
+void MoveFrameScene(const scenes::Scene& moved, float aspect, FrameScene& frame);
 
 }  // namespace study

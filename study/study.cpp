@@ -1,6 +1,7 @@
 // The main job's computation (see study.h).
 
 #include "study/study.h"
+#include "study/study_steps.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,32 +20,21 @@
 #include "sim/formats.h"
 
 namespace study {
-namespace {
+namespace detail {
 
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Runs `body` as one named step and tells the observer how long it took.
-template <typename Body>
-auto Step(const StudyObserver& observer, const std::string& what, Body&& body) {
-  const Clock::time_point start = Clock::now();
-  auto done = [&] {
-    if (observer.stepDone) observer.stepDone(what, SecondsSince(start));
-  };
-  if constexpr (std::is_void_v<decltype(body())>) {
-    body();
-    done();
-  } else {
-    auto result = body();
-    done();
-    return result;
+StudyGroundTruth ToStudyGroundTruth(scenes::GroundTruthImage image) {
+  StudyGroundTruth truth;
+  truth.image = std::move(image);
+  truth.edgeMask.reserve(truth.image.edge.size());
+  for (const std::uint8_t edge : truth.image.edge) truth.edgeMask.push_back(edge != 0 ? 1.0f : 0.0f);
+  truth.colour = sim::Texture2D<glm::vec4>("ground truth", truth.image.width, truth.image.height);
+  for (std::size_t i = 0; i < truth.image.colour.size(); ++i) {
+    truth.colour.Texels()[i] = glm::vec4(truth.image.colour[i], 1.0f);
   }
+  return truth;
 }
 
-StudyGroundTruth RenderGroundTruth(const StudyInputs& inputs, const ExperimentConfig& config,
+StudyGroundTruth RenderGroundTruth(const scenes::Scene& scene, const ExperimentConfig& config,
                                    const StudyObserver& observer) {
   const Clock::time_point start = Clock::now();
   scenes::GroundTruthSettings settings;
@@ -53,20 +43,13 @@ StudyGroundTruth RenderGroundTruth(const StudyInputs& inputs, const ExperimentCo
   settings.samplesPerPixel = config.groundTruth.samplesPerPixel;
   StudyGroundTruth truth;
   if (!config.groundTruth.cache) {
-    truth.image = scenes::RenderGroundTruth(inputs.scene, inputs.scene.camera, settings, observer.groundTruthProgress);
+    truth = ToStudyGroundTruth(scenes::RenderGroundTruth(scene, scene.camera, settings, observer.groundTruthProgress));
   } else {
     const scenes::GroundTruthCache cache(*config.groundTruth.cache);
-    scenes::CachedGroundTruth cached =
-        cache.LoadOrRender(inputs.scene, inputs.scene.camera, settings, observer.groundTruthProgress);
-    truth.image = std::move(cached.image);
+    scenes::CachedGroundTruth cached = cache.LoadOrRender(scene, scene.camera, settings, observer.groundTruthProgress);
+    truth = ToStudyGroundTruth(std::move(cached.image));
     truth.cacheHit = cached.cacheHit;
     truth.cacheFile = cached.file;
-  }
-  truth.edgeMask.reserve(truth.image.edge.size());
-  for (const std::uint8_t edge : truth.image.edge) truth.edgeMask.push_back(edge != 0 ? 1.0f : 0.0f);
-  truth.colour = sim::Texture2D<glm::vec4>("ground truth", truth.image.width, truth.image.height);
-  for (std::size_t i = 0; i < truth.image.colour.size(); ++i) {
-    truth.colour.Texels()[i] = glm::vec4(truth.image.colour[i], 1.0f);
   }
   truth.seconds = SecondsSince(start);
   return truth;
@@ -86,13 +69,14 @@ passes::QualityResult ScoreAgainstGroundTruth(const sim::Texture2D<glm::vec4>& i
   return result;
 }
 
-sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentConfig& config, std::size_t mode,
+sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentConfig& config,
+                                    const fmask::EqaaConfig& mode, const raster::SamplePattern& pattern,
                                     const std::string& policy) {
   sim::FrameSettings settings;
   settings.width = config.width;
   settings.height = config.height;
-  settings.eqaa = config.modes[mode];
-  settings.pattern = inputs.patterns[mode];
+  settings.eqaa = mode;
+  settings.pattern = pattern;
   settings.policy = fmask::PolicyByName(policy);
   settings.flush = config.flush;
   settings.drawOrder = config.drawOrder;
@@ -101,6 +85,54 @@ sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentC
   ApplyLighting(inputs.scene.lighting, settings);
   return settings;
 }
+
+std::vector<passes::Strategy> ChosenStrategies(const ExperimentConfig& config, const passes::PassInfo& info) {
+  if (config.strategies.empty()) return info.strategies;
+  std::vector<passes::Strategy> chosen;
+  for (const passes::Strategy strategy : info.strategies) {
+    if (std::find(config.strategies.begin(), config.strategies.end(), strategy) != config.strategies.end()) {
+      chosen.push_back(strategy);
+    }
+  }
+  return chosen;
+}
+
+StudyPass NewStudyPass(const passes::PassConfig& config, const std::string& frameLabel) {
+  const passes::PassInfo& info = config.Info();
+  const std::string name(info.name);
+  return {.name = name,
+          .description = std::string(info.description),
+          .studiedDispatch = std::string(info.studiedDispatches.front()),
+          .settings = passes::DescribeSettings(config.settings),
+          .inputFrame = frameLabel,
+          .image = {name, "passes/" + name, {"pass output", 1, 1}, {}}};
+}
+
+void FinishStudyPass(StudyPass result, passes::PassOutput first, const StudyGroundTruth& groundTruth,
+                     const StudyObserver& observer, Study& study) {
+  const passes::PassInfo& info = passes::PassByName(result.name).info();
+  result.workItems = first.workItems;
+  result.workSet = first.workSet;
+  result.image.colour = std::move(first.colour);
+  result.image.quality = Step(observer, "metrics " + result.name,
+                              [&] { return ScoreAgainstGroundTruth(result.image.colour, groundTruth); });
+  for (const StudyPass& earlier : study.passes) {
+    if (earlier.name == info.variantOf && earlier.inputFrame == result.inputFrame) {
+      result.variant = CompareVariant(earlier.name, result.image.colour, earlier.image.colour);
+    }
+  }
+  if (observer.passDone) {
+    observer.passDone(result);
+    for (StudyPassRun& run : result.runs) std::vector<passes::PassLayer>().swap(run.layers);
+  }
+  study.passes.push_back(std::move(result));
+}
+
+}  // namespace detail
+
+namespace {
+
+using namespace detail;
 
 class StudyRunner {
  public:
@@ -113,13 +145,14 @@ class StudyRunner {
     study_.triangles = inputs_.scene.TriangleCount();
     study_.gpu = inputs_.gpu;
     study_.groundTruth =
-        Step(observer_, GroundTruthStep(), [&] { return RenderGroundTruth(inputs_, config_, observer_); });
+        Step(observer_, GroundTruthStep(), [&] { return RenderGroundTruth(inputs_.scene, config_, observer_); });
     for (std::size_t mode = 0; mode < config_.modes.size(); ++mode) RunMode(mode);
     for (const std::string& policy : config_.comparedPolicies) {
       for (std::size_t mode = 0; mode < config_.modes.size(); ++mode) {
         if (config_.modes[mode].fragments < config_.modes[mode].coverageSamples) RunComparedPolicy(mode, policy);
       }
     }
+    if (config_.sequence.frames > 1) RunSequenceStudy(inputs_, config_, observer_, machine_, study_);
     study_.hostSeconds = SecondsSince(start);
     return std::move(study_);
   }
@@ -151,7 +184,7 @@ class StudyRunner {
 
   void RunComparedPolicy(std::size_t mode, const std::string& policy) {
     const fmask::EqaaConfig& eqaa = config_.modes[mode];
-    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode, policy));
+    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, eqaa, inputs_.patterns[mode], policy));
     StudyFrame frame = DrawFrame(mode, fmask::EqaaName(eqaa) + " " + policy, "frames/" + ModeSlug(eqaa) + "-" + policy,
                                  pipeline);
     if (observer_.frameDone) observer_.frameDone(frame, pipeline);
@@ -161,7 +194,7 @@ class StudyRunner {
   void RunMode(std::size_t mode) {
     const fmask::EqaaConfig& eqaa = config_.modes[mode];
     const std::string label = fmask::EqaaName(eqaa);
-    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, mode, config_.policy));
+    sim::FramePipeline pipeline(machine_, FrameSettingsFor(inputs_, config_, eqaa, inputs_.patterns[mode], config_.policy));
     StudyFrame frame = DrawFrame(mode, label, "frames/" + ModeSlug(eqaa), pipeline);
     if (FeedsAPass(mode)) {
       ScoredImage srgb8{label + " sRGB8", frame.image.folder + "/srgb8",
@@ -172,7 +205,7 @@ class StudyRunner {
     }
     if (observer_.frameDone) observer_.frameDone(frame, pipeline);
     for (const passes::PassConfig& pass : config_.passes) {
-      if (PassFrame(config_, pass.Info()) == mode) RunPass(pass, pipeline, label);
+      if (SingleFramePass(pass) && PassFrame(config_, pass.Info()) == mode) RunPass(pass, pipeline, label);
     }
     study_.frames.push_back(std::move(frame));
   }
@@ -210,30 +243,29 @@ class StudyRunner {
 
   bool FeedsAPass(std::size_t mode) const {
     return std::any_of(config_.passes.begin(), config_.passes.end(),
-                       [&](const passes::PassConfig& pass) { return PassFrame(config_, pass.Info()) == mode; });
+                       [&](const passes::PassConfig& pass) { return SingleFramePass(pass) && PassFrame(config_, pass.Info()) == mode; });
+  }
+
+  // A temporal pass in a multi-frame run runs on the sequence only (its single-frame entry is
+  // its sequence's last frame).
+  bool SingleFramePass(const passes::PassConfig& pass) const {
+    return !pass.Info().temporal || config_.sequence.frames <= 1;
   }
 
   void RunPass(const passes::PassConfig& config, const sim::FramePipeline& pipeline, const std::string& frameLabel) {
-    const passes::PassInfo& info = config.Info();
-    const std::string name(info.name);
-    StudyPass result{.name = name,
-                     .description = std::string(info.description),
-                     .studiedDispatch = std::string(info.studiedDispatches.front()),
-                     .settings = passes::DescribeSettings(config.settings),
-                     .inputFrame = frameLabel,
-                     .image = {name, "passes/" + name, {"pass output", 1, 1}, {}}};
-    const std::vector<passes::Strategy> strategies = StrategiesOf(info);
-    if (strategies.empty()) throw std::invalid_argument("pass " + name + " runs under none of the chosen strategies");
+    StudyPass result = NewStudyPass(config, frameLabel);
+    const std::vector<passes::Strategy> strategies = ChosenStrategies(config_, config.Info());
+    if (strategies.empty()) throw std::invalid_argument("pass " + result.name + " runs under none of the chosen strategies");
     std::optional<passes::PassOutput> first;
     for (const passes::Strategy strategy : strategies) {
       const std::string strategyName(passes::StrategyName(strategy));
       StudyPassRun run{.strategy = strategy, .firstDispatch = study_.dispatches.size(), .endDispatch = 0, .layers = {}};
       // One instance per strategy: a pass with history must not carry one strategy's into the other's.
       const std::unique_ptr<passes::Pass> pass = config.Make();
-      passes::PassOutput output = Step(observer_, "pass " + name + " [" + strategyName + "]", [&] {
+      passes::PassOutput output = Step(observer_, "pass " + result.name + " [" + strategyName + "]", [&] {
         return pass->Run(machine_, passes::FrameInputsOf(pipeline), strategy);
       });
-      TakeDispatches(machine_, study_.dispatches, frameLabel, name, strategyName);
+      TakeDispatches(machine_, study_.dispatches, frameLabel, result.name, strategyName);
       run.endDispatch = study_.dispatches.size();
       run.layers = output.layers;
       if (!first) {
@@ -243,32 +275,7 @@ class StudyRunner {
       }
       result.runs.push_back(std::move(run));
     }
-    result.workItems = first->workItems;
-    result.workSet = first->workSet;
-    result.image.colour = std::move(first->colour);
-    result.image.quality =
-        Step(observer_, "metrics " + name, [&] { return ScoreAgainstGroundTruth(result.image.colour, study_.groundTruth); });
-    for (const StudyPass& earlier : study_.passes) {
-      if (earlier.name == info.variantOf && earlier.inputFrame == frameLabel) {
-        result.variant = CompareVariant(earlier.name, result.image.colour, earlier.image.colour);
-      }
-    }
-    if (observer_.passDone) {
-      observer_.passDone(result);
-      for (StudyPassRun& run : result.runs) std::vector<passes::PassLayer>().swap(run.layers);
-    }
-    study_.passes.push_back(std::move(result));
-  }
-
-  std::vector<passes::Strategy> StrategiesOf(const passes::PassInfo& info) const {
-    if (config_.strategies.empty()) return info.strategies;
-    std::vector<passes::Strategy> chosen;
-    for (const passes::Strategy strategy : info.strategies) {
-      if (std::find(config_.strategies.begin(), config_.strategies.end(), strategy) != config_.strategies.end()) {
-        chosen.push_back(strategy);
-      }
-    }
-    return chosen;
+    FinishStudyPass(std::move(result), std::move(*first), study_.groundTruth, observer_, study_);
   }
 
   const StudyInputs& inputs_;

@@ -18,6 +18,7 @@
 #include "study/eqaa_study.h"
 #include "study/experiment.h"
 #include "study/frame_scene.h"
+#include "study/sequence.h"
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
 #include "passes/compare.h"
@@ -104,12 +105,76 @@ struct StudyGroundTruth {
   double seconds = 0.0;
 };
 
+// Counters of one pass run (all its dispatches) or one frame's draw on one frame of a sequence.
+struct SequenceFrameCounters {
+  sim::LaneCounters lanes;  // merged over the dispatches
+  std::uint64_t dispatches = 0;
+  std::uint64_t dramBytes = 0;
+  // Bytes read and written on the pass's history resources (textures named "history...").
+  std::uint64_t historyBytes = 0;
+  double estimatedMicroseconds = 0.0;  // sum of the dispatches' estimates (docs/timing-model.md)
+};
+
+struct SequenceStrategyRun {
+  passes::Strategy strategy;
+  std::vector<SequenceFrameCounters> frames;  // one per frame
+};
+
+// One technique followed over a sequence: the drawn frames themselves (the aliased input every
+// pass of the group reads) or a post pass (its first strategy's images).
+struct SequenceTrack {
+  std::string technique;  // "frames", "smaa", "taa-ue4"
+  std::string pass;       // "" for the drawn frames
+  std::string folder;     // "sequence/halton8/taa-ue4"
+  std::vector<passes::QualityScores> quality;  // per frame, against that frame's ground truth
+  // Per frame: mean motion-compensated change from the previous frame in 8-bit codes (study/
+  // stability.h); NaN at frame 0.
+  std::vector<double> flicker;
+  // Per frame: error in codes on pixels disoccluded less than kGhostFrames frames ago; nullopt
+  // when there are none.
+  std::vector<std::optional<double>> ghosting;
+  std::vector<double> distanceToFinal;  // per frame: mean |image - last frame's image| in codes
+  std::optional<int> convergenceFrame;  // ConvergenceFrame(distanceToFinal, kConvergenceCodes)
+  // Mean over frames 1.. of flicker minus the ground truth's flicker on the same frames (aa-facts
+  // §9.3 (a), with motion compensated as in (c)); NaN for a one-frame sequence.
+  double excessFlicker = 0.0;
+  std::vector<SequenceStrategyRun> runs;  // the drawn frames: one run (the draw and its resolve)
+  // The first frame on which a later strategy's output differs from the first's, and how.
+  std::optional<int> differenceFrame;
+  passes::StrategyDifference difference{};
+};
+
+// The frames drawn with one jitter schedule and the techniques that read them.
+struct SequenceGroup {
+  std::string schedule;  // "none", "halton8"
+  fmask::EqaaConfig mode;
+  std::vector<double> groundTruthFlicker;         // per frame, the ground truth's (NaN at frame 0)
+  std::vector<std::uint64_t> disoccludedPixels;   // per frame (0 at frame 0)
+  std::vector<SequenceTrack> tracks;              // "frames" first, then passes in config order
+};
+
+// Pixels disoccluded this many frames ago or less count as young for the ghosting figure, and a
+// track has converged once every later frame is within this many codes of its last frame.
+inline constexpr int kGhostFrames = 4;
+inline constexpr double kConvergenceCodes = 0.5;
+
+struct StudySequence {
+  int frames = 0;
+  std::string cameraPath;  // "still", "orbit", ...
+  double framesPerSecond = 60.0;
+  bool groundTruthStill = false;  // one ground truth serves every frame (nothing moves)
+  double groundTruthSeconds = 0.0;
+  std::uint64_t groundTruthCacheHits = 0;
+  std::vector<SequenceGroup> groups;
+};
+
 struct Study {
   std::string sceneName;
   std::size_t triangles = 0;
   StudyGroundTruth groundTruth;
   std::vector<StudyFrame> frames;
   std::vector<StudyPass> passes;
+  std::optional<StudySequence> sequence;  // runs with ExperimentConfig::sequence.frames > 1
   sim::GpuConfig gpu;
   std::vector<DispatchRecord> dispatches;
   int threads = 0;
@@ -134,6 +199,11 @@ struct StudyObserver {
   scenes::ProgressCallback groundTruthProgress;
   // Once per mode, while its frame pipeline still holds the full surfaces.
   std::function<void(const StudyFrame&, const sim::FramePipeline&)> frameDone;
+  // Every image of a sequence as it is made: ground truth (group and track null), then each
+  // group's tracks, frame by frame.
+  std::function<void(const SequenceGroup* group, const SequenceTrack* track, int frame,
+                     const sim::Texture2D<glm::vec4>& image)>
+      sequenceImage;
   // After each pass, with every strategy's layers. When set, the study then drops the layers
   // (StudyPassRun::layers ends empty), so a run holds one pass's layers at a time.
   std::function<void(const StudyPass&)> passDone;

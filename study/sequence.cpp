@@ -1,0 +1,39 @@
+// Frame sequences (see sequence.h).
+
+#include "study/sequence.h"
+
+#include <stdexcept>
+
+namespace study {
+namespace {
+sim::FrameSettings WithPattern(sim::FrameSettings settings, const raster::JitterSchedule& schedule) {
+  settings.pattern = schedule.At(0);
+  return settings;
+}
+}  // namespace
+
+SequenceRenderer::SequenceRenderer(sim::Machine& machine, const scenes::Scene& scene, const FrameScene& base,
+                                   sim::FrameSettings settings, raster::JitterSchedule schedule,
+                                   const SequenceConfig& config)
+    : scene_(scene),
+      frame_(base),
+      schedule_(std::move(schedule)),
+      path_(config.cameraPath),
+      frameSeconds_(1.0 / config.framesPerSecond),
+      aspect_(static_cast<float>(settings.width) / static_cast<float>(settings.height)),
+      pipeline_(machine, WithPattern(std::move(settings), schedule_)) {}
+
+void SequenceRenderer::Render(int frame) {
+  if (frame < 0) throw std::invalid_argument("sequence frame " + std::to_string(frame) + " is negative");
+  MoveFrameScene(scenes::SceneAt(scene_, path_, frame), aspect_, frame_);
+  const ClipSpaceScene previous = ToClipSpace(scenes::SceneAt(scene_, path_, frame - 1), aspect_);
+  pipeline_.Render(frame_.Geometry(previous.positions), {.pattern = &schedule_.At(frame), .frameIndex = frame});
+}
+
+passes::FrameInputs SequenceRenderer::Inputs() const {
+  passes::FrameInputs inputs = passes::FrameInputsOf(pipeline_);
+  inputs.frameSeconds = frameSeconds_;
+  return inputs;
+}
+
+}  // namespace study

@@ -1,0 +1,304 @@
+// The multi-frame part of the study (see study_steps.h): every configured pass followed over a
+// sequence drawn with the jitter schedule it is built for, scored frame by frame against a
+// jitter-free ground truth of the same frame, with flicker, ghosting and convergence.
+//
+// Techniques are grouped by the frames they read: one group per (schedule, mode). Spatial passes
+// read the run's first frame mode unjittered ("none"); a temporal pass reads its PassInfo::jitter
+// schedule (or the run's override) drawn as S/S/S with the schedule's S. Every group draws its
+// frames once and every pass of the group reads them, one instance per strategy for the whole
+// sequence. Reports of the last frame join Study::dispatches (a temporal pass's study entry is
+// its last frame); earlier frames are summarised into SequenceFrameCounters and dropped.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "scenes/motion.h"
+#include "sim/colour.h"
+#include "study/stability.h"
+#include "study/study_steps.h"
+
+namespace study::detail {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Ages saturate here; only ages below kGhostFrames are ever asked for.
+constexpr std::uint8_t kAgeCap = 255;
+
+SequenceFrameCounters Summarise(const std::vector<sim::DispatchReport>& reports) {
+  SequenceFrameCounters counters;
+  for (const sim::DispatchReport& report : reports) {
+    counters.lanes.Merge(report.lanes);
+    ++counters.dispatches;
+    counters.dramBytes += report.DramBytes();
+    counters.estimatedMicroseconds += report.time.totalMicroseconds;
+    for (const sim::ResourceTraffic& traffic : report.resources) {
+      if (traffic.name.starts_with("history")) counters.historyBytes += traffic.bytesRead + traffic.bytesWritten;
+    }
+  }
+  return counters;
+}
+
+// The sRGB 8-bit codes of an image's RGB, kept per frame for the distance to the last frame.
+std::vector<std::uint8_t> DisplayCodes(const sim::Texture2D<glm::vec4>& image) {
+  std::vector<std::uint8_t> codes;
+  codes.reserve(image.Texels().size() * 3);
+  for (const glm::vec4& texel : image.Texels()) {
+    for (int c = 0; c < 3; ++c) codes.push_back(sim::EncodeSrgb8(texel[c]));
+  }
+  return codes;
+}
+
+double MeanCodeDistance(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+  std::uint64_t sum = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) sum += static_cast<std::uint64_t>(std::abs(int(a[i]) - int(b[i])));
+  return a.empty() ? 0.0 : static_cast<double>(sum) / static_cast<double>(a.size());
+}
+
+struct TrackState {
+  const passes::PassConfig* pass = nullptr;  // null: the drawn frames
+  std::vector<passes::Strategy> strategies;
+  std::vector<std::unique_ptr<passes::Pass>> instances;  // one per strategy, for the whole sequence
+  std::optional<sim::Texture2D<glm::vec4>> previous;
+  std::vector<std::vector<std::uint8_t>> codes;  // per frame
+};
+
+struct GroupState {
+  SequenceGroup result;
+  std::unique_ptr<SequenceRenderer> renderer;
+  std::vector<TrackState> tracks;
+  std::optional<sim::Texture2D<std::uint32_t>> previousIds;
+  std::vector<std::uint8_t> ages;
+};
+
+std::string ScheduleOf(const ExperimentConfig& config, const passes::PassInfo& info) {
+  if (!info.temporal) return "none";
+  return config.sequence.jitterOverride.empty() ? std::string(info.jitter) : config.sequence.jitterOverride;
+}
+
+class SequenceStudy {
+ public:
+  SequenceStudy(const StudyInputs& inputs, const ExperimentConfig& config, const StudyObserver& observer,
+                sim::Machine& machine, Study& study)
+      : inputs_(inputs), config_(config), observer_(observer), machine_(machine), study_(study) {}
+
+  void Run() {
+    const int frames = config_.sequence.frames;
+    StudySequence& sequence = study_.sequence.emplace();
+    sequence.frames = frames;
+    sequence.cameraPath = std::string(scenes::CameraPathKindName(config_.sequence.cameraPath.kind));
+    sequence.framesPerSecond = config_.sequence.framesPerSecond;
+    sequence.groundTruthStill = NothingMoves();
+    for (const passes::PassConfig& pass : config_.passes) AddPass(pass);
+    std::optional<StudyGroundTruth> previousTruth;
+    for (int frame = 0; frame < frames; ++frame) {
+      StudyGroundTruth truth = GroundTruthAt(frame, previousTruth);
+      for (GroupState& group : groups_) StepGroup(group, frame, truth, previousTruth);
+      previousTruth = std::move(truth);
+    }
+    for (GroupState& group : groups_) {
+      for (std::size_t t = 0; t < group.tracks.size(); ++t) Conclude(group.result, group.result.tracks[t], group.tracks[t]);
+      sequence.groups.push_back(std::move(group.result));
+    }
+  }
+
+ private:
+  bool NothingMoves() const {
+    if (config_.sequence.cameraPath.kind != scenes::CameraPathKind::Still) return false;
+    return std::all_of(inputs_.scene.meshes.begin(), inputs_.scene.meshes.end(),
+                       [](const scenes::Mesh& mesh) { return mesh.motion.IsStatic(); });
+  }
+
+  StudyGroundTruth GroundTruthAt(int frame, std::optional<StudyGroundTruth>& previous) {
+    StudySequence& sequence = *study_.sequence;
+    StudyGroundTruth truth;
+    if (sequence.groundTruthStill && previous) {
+      truth = *previous;
+    } else {
+      truth = Step(observer_, "ground truth frame " + std::to_string(frame), [&] {
+        return RenderGroundTruth(scenes::SceneAt(inputs_.scene, config_.sequence.cameraPath, frame), config_, observer_);
+      });
+      sequence.groundTruthSeconds += truth.seconds;
+      sequence.groundTruthCacheHits += truth.cacheHit ? 1 : 0;
+    }
+    if (observer_.sequenceImage) observer_.sequenceImage(nullptr, nullptr, frame, truth.colour);
+    return truth;
+  }
+
+  // The group the pass reads its frames from, made on first use.
+  GroupState& GroupFor(const passes::PassInfo& info) {
+    const std::string schedule = ScheduleOf(config_, info);
+    const int scheduleSamples = raster::JitterScheduleSamples(schedule);
+    fmask::EqaaConfig mode = config_.modes.front();
+    raster::SamplePattern pattern = inputs_.patterns.front();
+    if (scheduleSamples == 0) {
+      const std::optional<std::size_t> index = PassFrame(config_, info);
+      if (!index) throw std::invalid_argument("pass " + std::string(info.name) + " reads no mode of this run");
+      mode = config_.modes[*index];
+      pattern = inputs_.patterns[*index];
+    } else {
+      if (info.eqaaSamples != 0 && info.eqaaSamples != scheduleSamples) {
+        throw std::invalid_argument("pass " + std::string(info.name) + " reads " + std::to_string(info.eqaaSamples) +
+                                    " samples but jitter schedule '" + schedule + "' draws " +
+                                    std::to_string(scheduleSamples));
+      }
+      mode = {scheduleSamples, scheduleSamples, scheduleSamples};
+    }
+    for (GroupState& group : groups_) {
+      if (group.result.schedule == schedule && group.result.mode == mode) return group;
+    }
+    GroupState& group = groups_.emplace_back();
+    group.result.schedule = schedule;
+    group.result.mode = mode;
+    group.renderer = std::make_unique<SequenceRenderer>(
+        machine_, inputs_.scene, inputs_.frame, FrameSettingsFor(inputs_, config_, mode, pattern, config_.policy),
+        raster::JitterSchedule::Make(schedule, pattern), config_.sequence);
+    AddTrack(group, nullptr, "frames");
+    return group;
+  }
+
+  std::string GroupFolder(const SequenceGroup& group) const {
+    return "sequence/" + group.schedule + "-" + ModeSlug(group.mode);
+  }
+
+  void AddTrack(GroupState& group, const passes::PassConfig* pass, const std::string& technique) {
+    SequenceTrack track;
+    track.technique = technique;
+    track.pass = pass ? technique : "";
+    track.folder = GroupFolder(group.result) + "/" + technique;
+    TrackState state;
+    state.pass = pass;
+    if (pass) {
+      state.strategies = ChosenStrategies(config_, pass->Info());
+      if (state.strategies.empty()) throw std::invalid_argument("pass " + technique + " runs under none of the chosen strategies");
+      for (const passes::Strategy strategy : state.strategies) {
+        state.instances.push_back(pass->Make());
+        track.runs.push_back({strategy, {}});
+      }
+    } else {
+      track.runs.push_back({passes::Strategy::StencilCulled, {}});
+    }
+    group.result.tracks.push_back(std::move(track));
+    group.tracks.push_back(std::move(state));
+  }
+
+  void AddPass(const passes::PassConfig& pass) {
+    GroupState& group = GroupFor(pass.Info());
+    AddTrack(group, &pass, std::string(pass.Info().name));
+  }
+
+  std::string FrameLabel(const SequenceGroup& group, int frame) const {
+    return "frame " + std::to_string(frame) + " " + group.schedule + " " + fmask::EqaaName(group.mode);
+  }
+
+  void StepGroup(GroupState& group, int frame, const StudyGroundTruth& truth,
+                 const std::optional<StudyGroundTruth>& previousTruth) {
+    const std::string label = FrameLabel(group.result, frame);
+    Step(observer_, "sequence " + label, [&] { group.renderer->Render(frame); });
+    group.result.tracks.front().runs.front().frames.push_back(Summarise(machine_.TakeReports()));
+    const passes::FrameInputs inputs = group.renderer->Inputs();
+    std::optional<Reprojection> reprojection;
+    if (group.previousIds) {
+      reprojection = Reproject(*inputs.velocity, *inputs.objectId, *group.previousIds);
+      group.ages = AdvanceAges(group.ages, *reprojection, kAgeCap);
+    } else {
+      group.ages.assign(static_cast<std::size_t>(config_.width) * static_cast<std::size_t>(config_.height), kAgeCap);
+    }
+    group.result.disoccludedPixels.push_back(reprojection ? reprojection->disoccludedPixels : 0);
+    group.result.groundTruthFlicker.push_back(
+        reprojection ? CompensatedDifference(truth.colour, previousTruth->colour, *reprojection) : kNaN);
+    const FrameContext context{frame, label, truth, reprojection ? &*reprojection : nullptr, group.ages};
+    Record(group.result, group.result.tracks.front(), group.tracks.front(), *inputs.colour, context);
+    for (std::size_t t = 1; t < group.tracks.size(); ++t) {
+      RunTrack(group.result, group.result.tracks[t], group.tracks[t], inputs, context);
+    }
+    group.previousIds = *inputs.objectId;
+  }
+
+  struct FrameContext {
+    int frame;
+    const std::string& label;
+    const StudyGroundTruth& truth;
+    const Reprojection* reprojection;  // null at frame 0
+    const std::vector<std::uint8_t>& ages;
+  };
+
+  bool LastFrame(int frame) const { return frame + 1 == config_.sequence.frames; }
+
+  void RunTrack(SequenceGroup& group, SequenceTrack& track, TrackState& state, const passes::FrameInputs& inputs,
+                const FrameContext& context) {
+    const bool entry = LastFrame(context.frame) && state.pass->Info().temporal;
+    std::optional<StudyPass> result;
+    if (entry) result = NewStudyPass(*state.pass, context.label);
+    std::optional<passes::PassOutput> first;
+    for (std::size_t s = 0; s < state.strategies.size(); ++s) {
+      const std::string strategyName(passes::StrategyName(state.strategies[s]));
+      passes::PassOutput output = Step(observer_, "sequence " + context.label + " pass " + track.technique + " [" + strategyName + "]",
+                                       [&] { return state.instances[s]->Run(machine_, inputs, state.strategies[s]); });
+      std::vector<sim::DispatchReport> reports = machine_.TakeReports();
+      track.runs[s].frames.push_back(Summarise(reports));
+      if (result) {
+        StudyPassRun run{.strategy = state.strategies[s], .firstDispatch = study_.dispatches.size(), .endDispatch = 0,
+                         .layers = output.layers};
+        for (sim::DispatchReport& report : reports) {
+          study_.dispatches.push_back({std::move(report), context.label, track.technique, strategyName});
+        }
+        run.endDispatch = study_.dispatches.size();
+        result->runs.push_back(std::move(run));
+      }
+      if (!first) {
+        first = std::move(output);
+        continue;
+      }
+      if (!track.differenceFrame) {
+        passes::StrategyDifference difference = passes::CompareOutputs(*first, output);
+        if (!difference.Identical()) {
+          track.differenceFrame = context.frame;
+          track.difference = std::move(difference);
+        }
+      }
+      if (result && result->difference.Identical()) result->difference = passes::CompareOutputs(*first, output);
+    }
+    Record(group, track, state, first->colour, context);
+    if (result) FinishStudyPass(std::move(*result), std::move(*first), context.truth, observer_, study_);
+  }
+
+  void Record(const SequenceGroup& group, SequenceTrack& track, TrackState& state, const sim::Texture2D<glm::vec4>& image,
+              const FrameContext& context) {
+    track.quality.push_back(
+        Step(observer_, "metrics " + context.label + " " + track.technique,
+             [&] { return ScoreAgainstGroundTruth(image, context.truth).scores; }));
+    track.flicker.push_back(context.reprojection ? CompensatedDifference(image, *state.previous, *context.reprojection) : kNaN);
+    track.ghosting.push_back(YoungPixelError(image, context.truth.colour, context.ages, kGhostFrames));
+    state.codes.push_back(DisplayCodes(image));
+    if (observer_.sequenceImage) observer_.sequenceImage(&group, &track, context.frame, image);
+    state.previous = image;
+  }
+
+  static void Conclude(const SequenceGroup& group, SequenceTrack& track, TrackState& state) {
+    for (const std::vector<std::uint8_t>& codes : state.codes) track.distanceToFinal.push_back(MeanCodeDistance(codes, state.codes.back()));
+    track.convergenceFrame = ConvergenceFrame(track.distanceToFinal, kConvergenceCodes);
+    double excess = 0.0;
+    for (std::size_t k = 1; k < track.flicker.size(); ++k) excess += track.flicker[k] - group.groundTruthFlicker[k];
+    track.excessFlicker = track.flicker.size() > 1 ? excess / static_cast<double>(track.flicker.size() - 1) : kNaN;
+    state = {};
+  }
+
+  const StudyInputs& inputs_;
+  const ExperimentConfig& config_;
+  const StudyObserver& observer_;
+  sim::Machine& machine_;
+  Study& study_;
+  std::vector<GroupState> groups_;
+};
+
+}  // namespace
+
+void RunSequenceStudy(const StudyInputs& inputs, const ExperimentConfig& config, const StudyObserver& observer,
+                      sim::Machine& machine, Study& study) {
+  SequenceStudy(inputs, config, observer, machine, study).Run();
+}
+
+}  // namespace study::detail

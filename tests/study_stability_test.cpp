@@ -1,0 +1,84 @@
+// Temporal stability measures (study/stability.h): reprojection by velocity and object id, the
+// motion-compensated difference (exact for integer motion), pixel ages carried along the motion,
+// the error on young pixels and the convergence frame.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim/formats.h"
+#include "study/stability.h"
+
+namespace study {
+namespace {
+
+constexpr int kSize = 16;
+
+// A grey ramp in 8-bit codes whose value depends on x and y, moved `shift` pixels right.
+sim::Texture2D<glm::vec4> Ramp(int shift) {
+  sim::Texture2D<glm::vec4> image("ramp", kSize, kSize);
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const float v = sim::Srgb8ToFloat(static_cast<std::uint8_t>(((x - shift) * 13 + y * 7) & 0xFF));
+      image.At(x, y) = glm::vec4(v, v, v, 1.0f);
+    }
+  }
+  return image;
+}
+
+sim::Texture2D<glm::vec2> Velocity(glm::vec2 v) {
+  sim::Texture2D<glm::vec2> velocity("velocity", kSize, kSize);
+  velocity.Fill(v);
+  return velocity;
+}
+
+sim::Texture2D<std::uint32_t> Ids(std::uint32_t id) {
+  sim::Texture2D<std::uint32_t> ids("ids", kSize, kSize);
+  ids.Fill(id);
+  return ids;
+}
+
+TEST(Stability, IntegerMotionIsCompensatedExactly) {
+  const Reprojection reprojection = Reproject(Velocity({2.0f, 0.0f}), Ids(1), Ids(1));
+  // Pixels x = 0, 1 came from off the screen.
+  EXPECT_EQ(reprojection.disoccludedPixels, 2u * kSize);
+  EXPECT_EQ(CompensatedDifference(Ramp(2), Ramp(0), reprojection), 0.0);
+  // Without compensation the same pair differs.
+  const Reprojection still = Reproject(Velocity({0.0f, 0.0f}), Ids(1), Ids(1));
+  EXPECT_GT(CompensatedDifference(Ramp(2), Ramp(0), still), 1.0);
+}
+
+TEST(Stability, AnotherObjectAtTheSourceIsADisocclusion) {
+  sim::Texture2D<std::uint32_t> previous = Ids(1);
+  previous.At(5, 5) = 2;  // the pixel that maps onto (5, 5) showed another object
+  const Reprojection reprojection = Reproject(Velocity({0.0f, 0.0f}), Ids(1), previous);
+  EXPECT_EQ(reprojection.disoccludedPixels, 1u);
+  EXPECT_EQ(reprojection.tracked[5 * kSize + 5], 0);
+}
+
+TEST(Stability, AgesFollowTheMotionAndRestartOnDisocclusion) {
+  const Reprojection right = Reproject(Velocity({1.0f, 0.0f}), Ids(1), Ids(1));
+  std::vector<std::uint8_t> ages = AdvanceAges({}, right, 9);
+  EXPECT_EQ(ages[0], 9);  // frame 0: nothing disoccluded yet
+  ages = AdvanceAges(ages, right, 9);
+  EXPECT_EQ(ages[0], 0);       // x = 0 entered from the left edge
+  EXPECT_EQ(ages[1], 9);       // capped
+  ages = AdvanceAges(ages, right, 9);
+  EXPECT_EQ(ages[0], 0);
+  EXPECT_EQ(ages[1], 1);       // the pixel that entered one frame ago moved to x = 1
+  const sim::Texture2D<glm::vec4> image = Ramp(0), truth = Ramp(1);
+  const std::optional<double> young = YoungPixelError(image, truth, ages, 2);
+  ASSERT_TRUE(young.has_value());
+  EXPECT_GT(*young, 0.0);
+  EXPECT_FALSE(YoungPixelError(image, truth, std::vector<std::uint8_t>(kSize * kSize, 9), 2).has_value());
+}
+
+TEST(Stability, ConvergenceIsTheFirstFrameFromWhichEveryLaterOneIsClose) {
+  EXPECT_EQ(ConvergenceFrame({5.0, 0.2, 0.9, 0.3, 0.0}, 0.5), 3);
+  EXPECT_EQ(ConvergenceFrame({0.1, 0.0}, 0.5), 0);
+  EXPECT_EQ(ConvergenceFrame({}, 0.5), std::nullopt);
+  EXPECT_EQ(MeanCodeDifference(Ramp(0), Ramp(0)), 0.0);
+}
+
+}  // namespace
+}  // namespace study
