@@ -273,6 +273,43 @@ InputImage ReadInputImage(const fs::path& path, const ImageSizeCheck& checkSize)
   throw InputImageError(Named(path, "not a PNG or OpenEXR file (no PNG or OpenEXR signature)"));
 }
 
+namespace {
+// The image's size or an error naming both files.
+ImageSizeCheck SameSize(const fs::path& path, std::string_view what, int width, int height, const std::string& image) {
+  return [=, what = std::string(what)](int fileWidth, int fileHeight) {
+    if (fileWidth == width && fileHeight == height) return;
+    throw InputImageError(Named(path, what + " is " + Dimensions(fileWidth, fileHeight) + ", the image " + image +
+                                          " is " + Dimensions(width, height)));
+  };
+}
+}  // namespace
+
+VelocityImage ReadVelocityExr(const fs::path& path, int width, int height, const std::string& image) {
+  if (KindOf(ReadBytes(path, kSignatureBytes)) != FileKind::Exr) {
+    throw InputImageError(Named(path, "not an OpenEXR file (no OpenEXR signature); velocity is read from OpenEXR only"));
+  }
+  std::string channels;
+  const ExrPlanes exr = ReadExrPlanes(
+      path,
+      [&](const std::vector<std::string>& available) {
+        for (const std::string_view pair : {"RG", "XY"}) {
+          const std::string x(1, pair[0]), y(1, pair[1]);
+          if (Has(available, x) && Has(available, y)) {
+            channels = std::string(pair);
+            return std::vector<std::string>{x, y};
+          }
+        }
+        throw InputImageError(Named(path, "OpenEXR channels " + Join(available) +
+                                              "; velocity is read from channels R and G, or X and Y"));
+      },
+      SameSize(path, "velocity", width, height, image));
+  VelocityImage velocity{channels, {"velocity", width, height, 8}};
+  for (std::size_t i = 0; i < exr.planes[0].size(); ++i) {
+    velocity.velocity.Texels()[i] = glm::vec2(exr.planes[0][i], exr.planes[1][i]);
+  }
+  return velocity;
+}
+
 DepthImage ReadDepthExr(const fs::path& path, int width, int height, const std::string& image) {
   if (KindOf(ReadBytes(path, kSignatureBytes)) != FileKind::Exr) {
     throw InputImageError(Named(path, "not an OpenEXR file (no OpenEXR signature); depth is read from OpenEXR only"));

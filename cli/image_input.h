@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "sim/resources.h"
@@ -54,5 +55,15 @@ struct DepthImage {
 // The first of kDepthChannels an OpenEXR file holds, every value finite. Its data window must
 // be `width` x `height`, the size of the colour image `image` (named in the error).
 DepthImage ReadDepthExr(const std::filesystem::path& path, int width, int height, const std::string& image);
+
+// A velocity buffer for `aasim post` over a sequence: an OpenEXR file of the image's size whose
+// channels R and G (RenderDoc's export of an RG target) or X and Y hold each pixel's motion in
+// pixels, current position minus previous, +y down (sim::FramePipeline::Velocity's convention),
+// every value finite.
+struct VelocityImage {
+  std::string channels;  // "RG" or "XY"
+  sim::Texture2D<glm::vec2> velocity{"velocity", 1, 1, 8};
+};
+VelocityImage ReadVelocityExr(const std::filesystem::path& path, int width, int height, const std::string& image);
 
 }  // namespace cli

@@ -2,11 +2,13 @@
 
 #include "cli/post_options.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "cli/common_options.h"
 #include "cli/frame_options.h"
 #include "cli/passes_command.h"
+#include "raster/jitter_schedule.h"
 
 namespace cli {
 namespace {
@@ -22,7 +24,7 @@ constexpr InputSource kInputSources[] = {
     {"a depth buffer", "--depth"},
     {"normals", ""},
     {"object ids", ""},
-    {"velocities", ""},
+    {"velocities", "--velocity"},
     {"an EQAA surface", ""},
 };
 
@@ -45,17 +47,37 @@ void AddPassOptions(CLI::App& command, PostCommandOptions& options) {
 
 void AddImageOptions(CLI::App& command, PostCommandOptions& options) {
   command
-      .add_option("--input", options.input,
+      .add_option("--input", options.inputs,
                   "The image to run the pass on, as a capture tool such as RenderDoc exports a render "
                   "target: an 8-bit PNG, read as sRGB-encoded (grey, RGB, with or without alpha), or an "
-                  "OpenEXR file, read as linear R, G, B and optional A; without alpha, alpha is 1")
+                  "OpenEXR file, read as linear R, G, B and optional A; without alpha, alpha is 1. Repeat for a "
+                  "sequence: the frames run in order through one pass instance per strategy, as a temporal pass "
+                  "needs, and each frame's outputs go to frame-NNN/")
       ->type_name("IMAGE")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->required();
   command
-      .add_option("--depth", options.depth,
+      .add_option("--depth", options.depths,
                   "Depth buffer for passes that read one: an OpenEXR file of the image's size, the depth "
-                  "in a channel named Z, Y or R (the first of these present)")
-      ->type_name("EXR");
+                  "in a channel named Z, Y or R (the first of these present); one per --input")
+      ->type_name("EXR")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command
+      .add_option("--velocity", options.velocities,
+                  "Velocity buffer for passes that read one: an OpenEXR file of the image's size, motion in "
+                  "pixels (current minus previous position, +y down) in channels R and G, or X and Y; one per "
+                  "--input")
+      ->type_name("EXR")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command
+      .add_option("--jitter", options.jitter,
+                  "The jitter schedule the frames were rendered with (docs/temporal.md), given to the pass as "
+                  "each frame's pattern and jitter [default: the pass's own schedule]")
+      ->check(CLI::IsMember(raster::JitterScheduleNames()));
+  command
+      .add_option("--fps", options.framesPerSecond, "Frame rate of the sequence (dt = 1/F for frame-rate-aware blends)")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
 }
 
 void AddRunOptions(CLI::App& command, PostCommandOptions& options) {
@@ -108,6 +130,13 @@ passes::PassConfig ResolveSettings(const PostCommandOptions& options) {
   return config;
 }
 
+// Per-frame files come one per --input or not at all.
+void CheckPerFrameFiles(const std::string& option, const std::vector<std::string>& files, std::size_t inputs) {
+  if (files.empty() || files.size() == inputs) return;
+  throw CLI::ValidationError(option + ": given " + std::to_string(files.size()) + " times for " +
+                             std::to_string(inputs) + " --input images; give one per image or none");
+}
+
 }  // namespace
 
 std::vector<passes::Strategy> PostCommandOptions::Strategies() const {
@@ -136,13 +165,21 @@ void ResolvePostOptions(PostCommandOptions& options) {
   if (options.Strategies().empty()) {
     throw CLI::ValidationError("--strategy " + options.strategy + ": pass " + options.pass + " does not run under it");
   }
-  CheckPostInputs(options.config->Info(), !options.depth.empty());
+  CheckPerFrameFiles("--depth", options.depths, options.inputs.size());
+  CheckPerFrameFiles("--velocity", options.velocities, options.inputs.size());
+  CheckPostInputs(options.config->Info(), !options.depths.empty(), !options.velocities.empty());
+  const std::string schedule = options.jitter.empty() ? std::string(options.config->Info().jitter) : options.jitter;
+  if (raster::JitterScheduleSamples(schedule) > 1) {
+    throw CLI::ValidationError("--jitter " + schedule + ": draws " + std::to_string(raster::JitterScheduleSamples(schedule)) +
+                               " samples per pixel; aasim post reads resolved one-sample images (use aasim run --frames)");
+  }
 }
 
-void CheckPostInputs(const passes::PassInfo& info, bool haveDepth) {
+void CheckPostInputs(const passes::PassInfo& info, bool haveDepth, bool haveVelocity) {
   for (const passes::FrameInput input : info.inputs) {
     const InputSource& source = kInputSources[static_cast<std::size_t>(input)];
-    const bool supplied = input == passes::FrameInput::Colour || (input == passes::FrameInput::Depth && haveDepth);
+    const bool supplied = input == passes::FrameInput::Colour || (input == passes::FrameInput::Depth && haveDepth) ||
+                          (input == passes::FrameInput::Velocity && haveVelocity);
     if (supplied) continue;
     const std::string pass = "--pass " + std::string(info.name) + " reads " + std::string(source.what);
     if (source.option.empty()) {
@@ -154,10 +191,10 @@ void CheckPostInputs(const passes::PassInfo& info, bool haveDepth) {
 }
 
 std::uint64_t EstimatePostBytes(int width, int height, const passes::PassInfo& info, std::size_t strategies,
-                                bool depth) {
+                                bool depth, bool velocity) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
   const std::uint64_t image = 2 * sizeof(glm::vec4);
-  const std::uint64_t depthBytes = depth ? 2 * sizeof(float) : 0;
+  const std::uint64_t depthBytes = (depth ? 2 * sizeof(float) : 0) + (velocity ? 2 * sizeof(glm::vec2) : 0);
   const std::uint64_t writers = sizeof(glm::vec4) + 4;  // output.exr's planes, output.png's bytes
   return pixels * (image + depthBytes + strategies * info.bytesPerPixel + writers);
 }

@@ -442,9 +442,9 @@ passes::PassInfo Reading(std::vector<passes::FrameInput> inputs) {
   return info;
 }
 
-std::string Refusal(const passes::PassInfo& info, bool haveDepth) {
+std::string Refusal(const passes::PassInfo& info, bool haveDepth, bool haveVelocity = false) {
   try {
-    cli::CheckPostInputs(info, haveDepth);
+    cli::CheckPostInputs(info, haveDepth, haveVelocity);
   } catch (const CLI::ValidationError& error) {
     return error.what();
   }
@@ -459,11 +459,88 @@ TEST(CliPostInputs, APassReadingDepthNeedsTheDepthOption) {
 
 TEST(CliPostInputs, InputsOnlyAFrameHasAreRefusedWithWhereToGetThem) {
   for (const passes::FrameInput input : {passes::FrameInput::Normal, passes::FrameInput::ObjectId,
-                                         passes::FrameInput::Velocity, passes::FrameInput::Eqaa}) {
+                                         passes::FrameInput::Eqaa}) {
     const std::string refusal = Refusal(Reading({passes::FrameInput::Colour, input}), true);
     EXPECT_NE(refusal.find("only a rendered frame has: run it with aasim frame --post deep"), std::string::npos)
         << refusal;
   }
+}
+
+TEST(CliPostInputs, APassReadingVelocitiesNeedsTheVelocityOption) {
+  const passes::PassInfo info = Reading({passes::FrameInput::Colour, passes::FrameInput::Velocity});
+  EXPECT_EQ(Refusal(info, true, false), "--pass deep reads velocities: give it with --velocity");
+  EXPECT_EQ(Refusal(info, true, true), "");
+}
+
+// The test PNG moved `shift` pixels right (wrapping), as a panning camera would show it.
+Png ShiftedPng(int shift) {
+  const Png base = TestPng(3);
+  Png png = base;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const int from = (y * kWidth + (x - shift + kWidth) % kWidth) * 3;
+      for (int c = 0; c < 3; ++c) png.pixels[std::size_t((y * kWidth + x) * 3 + c)] = base.pixels[std::size_t(from + c)];
+    }
+  }
+  return png;
+}
+
+fs::path WriteVelocity(const fs::path& path, float vx) {
+  Planes planes;
+  planes["R"].assign(std::size_t(kWidth) * kHeight, vx);
+  planes["G"].assign(std::size_t(kWidth) * kHeight, 0.0f);
+  return WriteExr(path, planes);
+}
+
+// Three frames through `copy`: each frame's outputs in frame-NNN/, the same bytes as its input,
+// one dispatch log labelled by frame, and report.json listing the frames with their velocity files.
+TEST_F(CliPostTest, ASequenceRunsFrameByFrameAndWritesEachFramesOutputs) {
+  std::vector<std::string> extra;
+  for (int k = 0; k < 3; ++k) {
+    const std::string n = std::to_string(k);
+    extra.insert(extra.end(), {"--input", Write(scratch_ / ("f" + n + ".png"), ShiftedPng(k)).string(), "--velocity",
+                               WriteVelocity(scratch_ / ("v" + n + ".exr"), 1.0f).string()});
+  }
+  std::vector<std::string> args{"post", "--pass", "copy", "--out", (scratch_ / "out").string(), "--threads", "2"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const CommandResult run = RunAasim(args, scratch_);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json report = Report(scratch_ / "out");
+  ASSERT_EQ(report["frames"].size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    char folder[16];
+    std::snprintf(folder, sizeof folder, "frame-%03d", k);
+    EXPECT_EQ(ReadPng(scratch_ / "out" / folder / "output.png").pixels, ShiftedPng(k).pixels) << folder;
+    const nlohmann::json& frame = report["frames"][std::size_t(k)];
+    EXPECT_EQ(frame["input"]["velocity"], (scratch_ / ("v" + std::to_string(k) + ".exr")).string());
+    EXPECT_TRUE(frame["comparison"]["identical"].get<bool>());
+  }
+  EXPECT_EQ(report["jitter"], "none");
+  const nlohmann::json dispatches = nlohmann::json::parse(ReadText(scratch_ / "out" / "dispatches.json"));
+  EXPECT_NE(ReadText(scratch_ / "out" / "dispatches.csv").find("frame 2"), std::string::npos);
+  EXPECT_EQ(dispatches["configuration"]["input"].size(), 3u);
+}
+
+TEST_F(CliPostTest, ASequenceRefusesMismatchedFilesWithOneLineAndNoOutput) {
+  const fs::path a = Write(scratch_ / "a.png", TestPng(3));
+  const fs::path v = WriteVelocity(scratch_ / "v.exr", 0.0f);
+  const CommandResult counts = RunAasim({"post", "--pass", "copy", "--input", a.string(), "--input", a.string(),
+                                         "--velocity", v.string(), "--out", (scratch_ / "out").string()},
+                                        scratch_);
+  EXPECT_EQ(counts.exitCode, 2);
+  EXPECT_NE(counts.err.find("--velocity: given 1 times for 2 --input images"), std::string::npos) << counts.err;
+  Png small = TestPng(3);
+  small.width = kWidth / 2;
+  small.pixels.resize(std::size_t(small.width) * kHeight * 3);
+  const fs::path b = Write(scratch_ / "b.png", small);
+  const CommandResult sizes =
+      RunAasim({"post", "--pass", "copy", "--input", a.string(), "--input", b.string(), "--out", (scratch_ / "out").string()},
+               scratch_);
+  EXPECT_EQ(sizes.exitCode, 1);
+  EXPECT_NE(sizes.err.find(b.string() + ": 12x16, the first image " + a.string() + " is 24x16"), std::string::npos)
+      << sizes.err;
+  EXPECT_EQ(std::count(sizes.err.begin(), sizes.err.end(), '\n'), 1) << sizes.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "out"));
 }
 
 }  // namespace
