@@ -167,6 +167,13 @@ void AddSequenceOptions(CLI::App& command, RunCommandOptions& options) {
                   "Simulated frame rate: frame-rate-aware passes blend with alpha = exp(-dt / tau), dt = 1 / fps")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
+  command
+      .add_option("--velocity-buffer", options.velocityBuffer,
+                  "What passes read as velocities: float (the frame's target), rg8 or rg8-half (seed 000's 8-bit "
+                  "two-piece-linear buffer over 0..40 px, at full or half resolution with the front-most velocity of "
+                  "each 2x2; docs/temporal.md)")
+      ->check(CLI::IsMember(study::VelocityBufferNames()))
+      ->capture_default_str();
 }
 
 void AddGroundTruthOptions(CLI::App& command, RunCommandOptions& options) {
@@ -211,7 +218,7 @@ void CheckGroundTruthSamples(int samples) {
 
 // A temporal pass's schedule must draw the samples it reads, and sequence options need frames.
 void CheckSequence(const CLI::App& command, const RunCommandOptions& options) {
-  for (const char* option : {"--camera-path", "--camera-speed", "--jitter", "--fps"}) {
+  for (const char* option : {"--camera-path", "--camera-speed", "--jitter", "--fps", "--velocity-buffer"}) {
     if (options.frames == 1 && command.count(option) > 0) {
       throw CLI::ValidationError(std::string(option) + ": only a multi-frame run uses it; add --frames N (N > 1)");
     }
@@ -401,6 +408,7 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.sequence.cameraPath = CameraPathFrom(options);
   config.sequence.framesPerSecond = options.framesPerSecond;
   config.sequence.jitterOverride = options.jitter;
+  config.sequence.velocityBuffer = *study::VelocityBufferByName(options.velocityBuffer);
   if (!options.noCache) {
     config.groundTruth.cache = options.cache;
     config.tableCache = std::filesystem::path(options.cache) / "tables";

@@ -57,6 +57,7 @@ struct RunCommandOptions {
   double cameraSpeed = 0.0;  // 0 = the path's default speed (scenes/motion.h)
   std::string jitter;        // "" = each temporal pass's own schedule
   double framesPerSecond = 60.0;
+  std::string velocityBuffer = "float";
   std::string progress = "auto";
   int threads = 0;  // default set by AddRunCommand: every core
   std::string out = "out/report";

@@ -617,6 +617,7 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"camera_speed", options.cameraSpeed == 0.0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cameraSpeed)},
           {"jitter", options.jitter.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.jitter)},
           {"fps", options.framesPerSecond},
+          {"velocity_buffer", options.velocityBuffer},
           {"gt_samples", options.groundTruthSamples},
           {"cache", options.noCache ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cache)},
           {"threads", threads}};

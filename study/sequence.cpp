@@ -15,8 +15,10 @@ sim::FrameSettings WithPattern(sim::FrameSettings settings, const raster::Jitter
 SequenceRenderer::SequenceRenderer(sim::Machine& machine, const scenes::Scene& scene, const FrameScene& base,
                                    sim::FrameSettings settings, raster::JitterSchedule schedule,
                                    const SequenceConfig& config)
-    : scene_(scene),
+    : machine_(machine),
+      scene_(scene),
       frame_(base),
+      velocityBuffer_(config.velocityBuffer),
       schedule_(std::move(schedule)),
       path_(config.cameraPath),
       frameSeconds_(1.0 / config.framesPerSecond),
@@ -28,11 +30,15 @@ void SequenceRenderer::Render(int frame) {
   MoveFrameScene(scenes::SceneAt(scene_, path_, frame), aspect_, frame_);
   const ClipSpaceScene previous = ToClipSpace(scenes::SceneAt(scene_, path_, frame - 1), aspect_);
   pipeline_.Render(frame_.Geometry(previous.positions), {.pattern = &schedule_.At(frame), .frameIndex = frame});
+  if (velocityBuffer_ != VelocityBuffer::Float) {
+    packedVelocity_ = PackVelocity(machine_, velocityBuffer_, pipeline_.Velocity(), pipeline_.Depth());
+  }
 }
 
 passes::FrameInputs SequenceRenderer::Inputs() const {
   passes::FrameInputs inputs = passes::FrameInputsOf(pipeline_);
   inputs.frameSeconds = frameSeconds_;
+  if (packedVelocity_) inputs.velocity = &*packedVelocity_;
   return inputs;
 }
 

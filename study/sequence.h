@@ -5,6 +5,7 @@
 // one frame earlier. Jitter moves only the sample positions, never the geometry, so velocities
 // carry no jitter (what a renderer gets by projecting both frames with unjittered matrices).
 
+#include <optional>
 #include <string>
 
 #include "passes/pass.h"
@@ -13,6 +14,7 @@
 #include "scenes/scene.h"
 #include "sim/frame.h"
 #include "study/frame_scene.h"
+#include "study/velocity_buffer.h"
 
 namespace study {
 
@@ -24,6 +26,9 @@ struct SequenceConfig {
   double framesPerSecond = 60.0;
   // Replaces every temporal pass's own schedule (PassInfo::jitter) when set.
   std::string jitterOverride;
+  // What passes read as velocities: the float target, or seed 000's 8-bit buffers
+  // (study/velocity_buffer.h), packed by a dispatch after each frame's draw.
+  VelocityBuffer velocityBuffer = VelocityBuffer::Float;
 };
 
 class SequenceRenderer {
@@ -41,8 +46,11 @@ class SequenceRenderer {
   passes::FrameInputs Inputs() const;
 
  private:
+  sim::Machine& machine_;
   const scenes::Scene& scene_;
   FrameScene frame_;
+  VelocityBuffer velocityBuffer_;
+  std::optional<sim::Texture2D<glm::vec2>> packedVelocity_;  // decoded, when the buffer is packed
   raster::JitterSchedule schedule_;
   scenes::CameraPath path_;
   double frameSeconds_;

@@ -101,6 +101,28 @@ TEST(SequenceRenderer, PanVelocityIsThePathsPixelsPerFrame) {
   EXPECT_NEAR(inputs.velocity->At(kWidth / 2, kHeight / 2).x, -1.0f, 1e-3f);
 }
 
+// With seed 000's half-resolution 8-bit buffer, passes read decoded velocities and the pack is a
+// dispatch of the frame.
+TEST(SequenceRenderer, PackedVelocityBuffersReachThePasses) {
+  const Loaded wheel = Load("builtin:wheel");
+  sim::Machine machine(sim::GpuConfigByName("ps4-class"));
+  SequenceConfig config = Frames(2);
+  config.velocityBuffer = VelocityBuffer::Rg8Half;
+  SequenceRenderer renderer(machine, wheel.scene, wheel.frame, Settings(),
+                            raster::JitterSchedule::Make("none", Settings().pattern), config);
+  machine.ClearReports();
+  renderer.Render(1);
+  EXPECT_EQ(machine.Reports().back().name, "frame/velocity-pack");
+  const passes::FrameInputs inputs = renderer.Inputs();
+  ASSERT_NE(inputs.velocity, &renderer.Pipeline().Velocity());
+  bool moving = false;
+  for (const glm::vec2& v : inputs.velocity->Texels()) {
+    EXPECT_EQ(v.x, DecodeVelocityComponent(EncodeVelocityComponent(v.x)));
+    moving = moving || v != glm::vec2(0.0f);
+  }
+  EXPECT_TRUE(moving);
+}
+
 ExperimentConfig SequenceExperiment() {
   ExperimentConfig config;
   config.scene = "builtin:wheel";
