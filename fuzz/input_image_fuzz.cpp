@@ -1,5 +1,5 @@
 // `aasim post`'s input reader (cli/image_input.h): PNG through the texture reader, OpenEXR
-// through OpenEXR, then the depth reader on the same bytes. It reads by path, so each input is
+// through OpenEXR, then the depth and velocity readers on the same bytes. It reads by path, so each input is
 // written to a file of this process first.
 
 #include <unistd.h>
@@ -32,6 +32,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     cli::ReadDepthExr(InputFile(), 4, 4, "colour.png");
+  } catch (const cli::InputImageError&) {
+  }
+  try {
+    cli::ReadVelocityExr(InputFile(), 4, 4, "colour.png");
   } catch (const cli::InputImageError&) {
   }
   return 0;
