@@ -97,6 +97,10 @@ bool AnyFrame(std::span<const study::DispatchRecord> records) {
   return std::any_of(records.begin(), records.end(), [](const study::DispatchRecord& r) { return !r.frame.empty(); });
 }
 
+bool AnySweepPoint(std::span<const study::DispatchRecord> records) {
+  return std::any_of(records.begin(), records.end(), [](const study::DispatchRecord& r) { return !r.sweepPoint.empty(); });
+}
+
 nlohmann::ordered_json Vector3(const glm::ivec3& v) { return {v.x, v.y, v.z}; }
 
 // Every key of a GPU file (sim/gpu_config.h's tables), so the block can be saved and read back
@@ -165,6 +169,7 @@ nlohmann::ordered_json DispatchJson(const study::DispatchRecord& record) {
   const std::string& strategy = record.strategy;
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
   if (!record.frame.empty()) json["frame"] = record.frame;
+  if (!record.sweepPoint.empty()) json["sweep_point"] = record.sweepPoint;
   json.update(nlohmann::ordered_json{
       {"name", report.name},
       {"kind", sim::DispatchKindName(report.kind)},
@@ -211,9 +216,11 @@ std::vector<std::string> PassCounterNames(std::span<const study::DispatchRecord>
   return names;
 }
 
-std::vector<std::string> CsvHeader(bool withFrame, std::span<const std::string> passCounters) {
+std::vector<std::string> CsvHeader(bool withFrame, std::span<const std::string> passCounters,
+                                   bool withSweepPoint = false) {
   std::vector<std::string> header;
   if (withFrame) header.emplace_back("frame");
+  if (withSweepPoint) header.emplace_back("sweep_point");
   header.insert(header.end(), {"name", "kind", "strategy"});
   for (const sim::LaneCounterField& field : sim::kLaneCounterFields) {
     header.emplace_back(field.name);
@@ -231,9 +238,11 @@ std::vector<std::string> CsvHeader(bool withFrame, std::span<const std::string> 
 }
 
 std::vector<std::string> CsvRow(const sim::DispatchReport& report, std::string_view strategy,
-                                std::optional<std::string_view> frame, std::span<const std::string> passCounters) {
+                                std::optional<std::string_view> frame, std::span<const std::string> passCounters,
+                                std::optional<std::string_view> sweepPoint = std::nullopt) {
   std::vector<std::string> row;
   if (frame) row.emplace_back(*frame);
+  if (sweepPoint) row.emplace_back(*sweepPoint);
   row.insert(row.end(), {report.name, std::string(sim::DispatchKindName(report.kind)), std::string(strategy)});
   for (const sim::LaneCounterField& field : sim::kLaneCounterFields) {
     row.push_back(std::to_string(report.lanes.*field.member));
@@ -398,14 +407,16 @@ std::string CsvField(std::string_view text) {
 }
 
 std::string DispatchReportsCsv(std::span<const study::DispatchRecord> records) {
-  const bool withFrame = AnyFrame(records);
+  const bool withFrame = AnyFrame(records), withSweepPoint = AnySweepPoint(records);
   const std::vector<std::string> passCounters = PassCounterNames(records);
   std::string csv;
-  AppendCsvLine(csv, CsvHeader(withFrame, passCounters));
+  AppendCsvLine(csv, CsvHeader(withFrame, passCounters, withSweepPoint));
   for (const study::DispatchRecord& record : records) {
     const std::optional<std::string_view> frame =
         withFrame ? std::optional<std::string_view>(record.frame) : std::nullopt;
-    AppendCsvLine(csv, CsvRow(record.report, record.strategy, frame, passCounters));
+    const std::optional<std::string_view> sweepPoint =
+        withSweepPoint ? std::optional<std::string_view>(record.sweepPoint) : std::nullopt;
+    AppendCsvLine(csv, CsvRow(record.report, record.strategy, frame, passCounters, sweepPoint));
   }
   return csv;
 }

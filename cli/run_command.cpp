@@ -51,7 +51,8 @@ void PrintQuality(std::ostream& out, const ScoredImage& image) {
 }
 
 void PrintPass(std::ostream& out, const Study& study, const StudyPass& pass) {
-  out << "\nstencil vs queue: " << pass.studiedDispatch << " on " << pass.inputFrame << " (" << pass.workItems
+  out << "\nstencil vs queue: " << pass.studiedDispatch << (pass.sweepPoint.empty() ? "" : " at " + pass.sweepPoint)
+      << " on " << pass.inputFrame << " (" << pass.workItems
       << " work-set pixels; estimated µs: docs/timing-model.md)\n";
   if (pass.runs.size() == 2) {
     const StudyPassRun &a = pass.runs[0], &b = pass.runs[1];
@@ -115,7 +116,7 @@ void RunRunCommand(const RunCommandOptions& options, std::ostream& summary, std:
   PrintSummary(summary, study, resolved, dir.Path());
   for (const StudyPass& pass : study.passes) {
     if (pass.difference.Identical()) continue;
-    throw std::runtime_error("post pass " + pass.name + ": the strategies' outputs differ (" +
+    throw std::runtime_error("post pass " + pass.Label() + ": the strategies' outputs differ (" +
                              pass.difference.Describe() + "): a bug in passes/ (outputs kept in " +
                              dir.Path().string() + ")");
   }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -15,6 +17,7 @@
 #include "passes/resolve.h"
 #include "raster/jitter_schedule.h"
 #include "scenes/motion.h"
+#include "study/study.h"
 
 namespace cli {
 namespace {
@@ -127,6 +130,12 @@ void AddStudyOptions(CLI::App& command, RunCommandOptions& options) {
       ->type_name("LIST")
       ->capture_default_str();
   command
+      .add_option("--sweep", options.sweeps,
+                  "A sweep axis: one setting of a --post pass run at each value, each an entry of its own "
+                  "(\"smaa threshold=0.05\"), PASS:SETTING=V1,V2,...; repeat for other passes (one axis per pass)")
+      ->type_name("PASS:SETTING=VALUES")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command
       .add_option("--strategy", options.strategy,
                   "Dispatch strategies the passes run under: stencil = stencil-culled full-screen pixel shader, "
                   "queue = deferred queue + indirect compute, both = each a pass declares, compared")
@@ -237,8 +246,54 @@ void CheckSequence(const CLI::App& command, const RunCommandOptions& options) {
   }
 }
 
+// "smaa:threshold=0.05,0.1" -> {smaa, threshold, {0.05, 0.1}}; the study checks the names and
+// values against the run's passes (study::PlanPasses).
+study::SweepAxis ParseSweep(const std::string& text) {
+  const std::size_t colon = text.find(':'), equals = text.find('=');
+  if (colon == std::string::npos || equals == std::string::npos || equals < colon || colon == 0 || equals == colon + 1) {
+    throw CLI::ValidationError("--sweep " + text + ": expected PASS:SETTING=V1,V2,... such as smaa:threshold=0.05,0.1");
+  }
+  study::SweepAxis axis{text.substr(0, colon), text.substr(colon + 1, equals - colon - 1), {}};
+  for (const std::string_view item : SplitList(std::string_view(text).substr(equals + 1))) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), value);
+    if (item.empty() || error != std::errc() || end != item.data() + item.size() || !std::isfinite(value)) {
+      throw CLI::ValidationError("--sweep " + text + ": '" + std::string(item) + "' is not a finite decimal");
+    }
+    axis.values.push_back(value);
+  }
+  return axis;
+}
+
+std::vector<passes::PassConfig> PlannedPassConfigs(const RunCommandOptions& options) {
+  study::ExperimentConfig config;
+  config.passes = options.postPasses;
+  config.sweeps = options.sweepAxes;
+  std::vector<passes::PassConfig> planned;
+  for (study::PlannedPass& pass : study::PlanPasses(config)) planned.push_back(std::move(pass.config));
+  return planned;
+}
+
+void ResolveSweeps(RunCommandOptions& options) {
+  options.sweepAxes.clear();
+  for (const std::string& text : options.sweeps) {
+    options.sweepAxes.push_back(ParseSweep(text));
+    study::ExperimentConfig config;
+    config.passes = options.postPasses;
+    config.sweeps = options.sweepAxes;
+    try {
+      study::PlanPasses(config);
+    } catch (const std::exception& error) {
+      // The study names the axis as "sweep PASS:SETTING: ..."; the option names it here.
+      std::string problem = error.what();
+      if (problem.starts_with("sweep ")) problem = problem.substr(problem.find(": ") + 2);
+      throw CLI::ValidationError("--sweep " + text + ": " + problem);
+    }
+  }
+}
+
 void CheckMemory(const RunCommandOptions& options) {
-  std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, options.postPasses,
+  std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, PlannedPassConfigs(options),
                                          options.resolveNames, options.comparedPolicies.size());
   if (options.frames > 1) bytes += EstimateSequenceBytes(ExperimentFrom(options));
   if (bytes > kMaxRunBytes) {
@@ -367,6 +422,7 @@ void ResolveRunOptions(CLI::App& command, RunCommandOptions& options) {
   for (const NamedProgress& entry : kProgressModes) {
     if (entry.name == options.progress) options.progressMode = entry.mode;
   }
+  ResolveSweeps(options);
   CheckSequence(command, options);
   CheckMemory(options);
 }
@@ -402,6 +458,7 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.depthPrepass = options.setup.depthPrepass;
   config.maxZPlanes = options.setup.maxZPlanes;
   config.passes = options.postPasses;
+  config.sweeps = options.sweepAxes;
   config.strategies = options.strategies;
   config.groundTruth.samplesPerPixel = options.groundTruthSamples;
   config.sequence.frames = options.frames;

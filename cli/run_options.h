@@ -48,6 +48,7 @@ struct RunCommandOptions {
   FrameSetupOptions setup;
   std::string post = "all";
   std::string strategy = "both";  // stencil, queue or both
+  std::vector<std::string> sweeps;  // --sweep PASS:SETTING=V1,V2,... (repeatable)
   int groundTruthSamples = 256;
   std::string cache;  // default set by AddRunCommand: scenes::GroundTruthCache::DefaultDirectory
   bool noCache = false;
@@ -68,6 +69,7 @@ struct RunCommandOptions {
   std::vector<passes::Strategy> strategies;  // empty = every strategy each pass declares
   std::vector<std::string> resolveNames;
   std::vector<std::string> comparedPolicies;
+  std::vector<study::SweepAxis> sweepAxes;
   ProgressMode progressMode = ProgressMode::Auto;
 };
 

@@ -178,6 +178,7 @@ nlohmann::ordered_json PassJson(const Study& study, const StudyPass& pass) {
                     {"estimated_us_total", PassMicroseconds(study, run)}});
   }
   return {{"name", pass.name},
+          {"sweep_point", pass.sweepPoint.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(pass.sweepPoint)},
           {"input_frame", pass.inputFrame},
           {"studied_dispatch", pass.studiedDispatch},
           {"folder", kImages + pass.image.folder},
@@ -241,7 +242,7 @@ std::vector<Shown> ShownImages(const Study& study, const sim::Texture2D<glm::vec
     if (frame.srgb8) shown.push_back({frame.srgb8->label, &frame.srgb8->colour, &*frame.srgb8});
   }
   for (const StudyPass& pass : study.passes) {
-    shown.push_back({pass.name + " on " + pass.inputFrame, &pass.image.colour, &pass.image});
+    shown.push_back({pass.Label() + " on " + pass.inputFrame, &pass.image.colour, &pass.image});
   }
   return shown;
 }
@@ -472,7 +473,7 @@ std::string VariantParagraph(const StudyPass& pass, const study::VariantDifferen
 }
 
 ReportSection PassSection(const Study& study, const StudyPass& pass) {
-  ReportSection section{"Dispatch strategies: " + pass.name, {}, {}, {}, {}};
+  ReportSection section{"Dispatch strategies: " + pass.Label(), {}, {}, {}, {}};
   section.paragraphs.push_back(
       pass.description + " (" + pass.settings + "), on the " + pass.inputFrame + " frame; " +
       std::to_string(pass.workItems) + " pixels in its work set. Stencil: a full-screen pixel shader culled by "
@@ -535,13 +536,13 @@ ReportSection PassesComparedSection(const Study& study) {
     time.values.emplace_back();
   }
   for (const StudyPass& pass : study.passes) {
-    time.categories.push_back(pass.name);
+    time.categories.push_back(pass.Label());
     for (std::vector<double>& values : time.values) values.push_back(0.0);
     const passes::QualityScores& q = pass.image.quality.scores;
     for (const StudyPassRun& run : pass.runs) {
       const sim::LaneCounters lanes = RunLanes(study, run);
       const double microseconds = PassMicroseconds(study, run);
-      table.rows.push_back({pass.name, std::string(passes::StrategyName(run.strategy)), std::to_string(pass.workItems),
+      table.rows.push_back({pass.Label(), std::string(passes::StrategyName(run.strategy)), std::to_string(pass.workItems),
                             std::to_string(lanes.waves), std::to_string(lanes.lanesLaunched),
                             FormatPercent(lanes.lanesActive, lanes.lanesLaunched),
                             FormatPercent(lanes.lanesHelper, lanes.lanesLaunched),
@@ -554,6 +555,49 @@ ReportSection PassesComparedSection(const Study& study) {
   }
   section.tables.push_back(std::move(table));
   section.charts.push_back(std::move(time));
+  return section;
+}
+
+// Passes run at the points of a sweep axis, by pass, in run order.
+std::vector<std::vector<const StudyPass*>> SweptPasses(const Study& study) {
+  std::vector<std::vector<const StudyPass*>> axes;
+  for (const StudyPass& pass : study.passes) {
+    if (pass.sweepPoint.empty()) continue;
+    if (axes.empty() || axes.back().front()->name != pass.name) axes.emplace_back();
+    axes.back().push_back(&pass);
+  }
+  return axes;
+}
+
+ReportSection SweepSection(const Study& study, const std::vector<const StudyPass*>& points) {
+  const std::string axis = points.front()->sweepPoint.substr(0, points.front()->sweepPoint.find('='));
+  ReportSection section{"Sweep: " + points.front()->name + " " + axis, {kEstimateNote}, {}, {}, {}};
+  ReportTable table{"Cost and quality at each point",
+                    {"point", "work set px", "estimated µs (per strategy)", "PSNR", "FLIP", "edge FLIP"},
+                    {}};
+  BarChart quality{"Edge FLIP at each point", "edge FLIP", {}, {"edge FLIP"}, {{}}, false};
+  BarChart cost{"Estimated time at each point", "µs", {}, {}, {}, false};
+  for (const StudyPassRun& run : points.front()->runs) {
+    cost.series.emplace_back(passes::StrategyName(run.strategy));
+    cost.values.emplace_back();
+  }
+  for (const StudyPass* pass : points) {
+    const passes::QualityScores& q = pass->image.quality.scores;
+    std::string times;
+    for (std::size_t r = 0; r < pass->runs.size(); ++r) {
+      const double microseconds = PassMicroseconds(study, pass->runs[r]);
+      times += (times.empty() ? "" : " / ") + FormatFixed(microseconds, 1);
+      if (r < cost.values.size()) cost.values[r].push_back(microseconds);
+    }
+    table.rows.push_back({pass->sweepPoint, std::to_string(pass->workItems), times, FormatFixed(q.psnr, 2),
+                          FormatFixed(q.flip, 4), FormatFixed(q.edgeFlip, 4)});
+    quality.categories.push_back(pass->sweepPoint);
+    cost.categories.push_back(pass->sweepPoint);
+    quality.values.front().push_back(std::isfinite(q.edgeFlip) ? q.edgeFlip : 0.0);
+  }
+  section.tables.push_back(std::move(table));
+  section.charts.push_back(std::move(quality));
+  section.charts.push_back(std::move(cost));
   return section;
 }
 
@@ -612,6 +656,7 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"max_zplanes", options.setup.maxZPlanes},
           {"post", PassNamesJson(options.postPasses)},
           {"strategy", options.strategy},
+          {"sweeps", options.sweeps},
           {"frames", options.frames},
           {"camera_path", options.cameraPath},
           {"camera_speed", options.cameraSpeed == 0.0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cameraSpeed)},
@@ -666,6 +711,7 @@ Report StudyHtml(const Study& study, const RunCommandOptions& options, const Seq
   report.sections.push_back(EqaaStudySection(study));
   if (!study.passes.empty()) report.sections.push_back(PassesComparedSection(study));
   for (const StudyPass& pass : study.passes) report.sections.push_back(PassSection(study, pass));
+  for (const std::vector<const StudyPass*>& axis : SweptPasses(study)) report.sections.push_back(SweepSection(study, axis));
   if (sequenceImages) {
     for (ReportSection& section : SequenceSections(study, *sequenceImages)) report.sections.push_back(std::move(section));
   }

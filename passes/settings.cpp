@@ -12,13 +12,13 @@ namespace {
 
 std::string Quote(std::string_view text) { return "'" + std::string(text) + "'"; }
 
+}  // namespace
+
 std::string FormatValue(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.9g", value);
   return text;
 }
-
-}  // namespace
 
 std::string RangeText(const SettingInfo& info) {
   std::string text;

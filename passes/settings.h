@@ -79,5 +79,7 @@ PassSettings ResolveSettings(const PassSpec& spec, std::span<const SettingInfo> 
 
 // "threshold=0.1, ..." for --help and reports.
 std::string DescribeSettings(const PassSettings& settings);
+// A setting's value as DescribeSettings writes it (9 significant digits).
+std::string FormatValue(double value);
 
 }  // namespace passes

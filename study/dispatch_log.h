@@ -15,13 +15,17 @@ struct DispatchRecord {
   std::string frame;     // label of the frame (EQAA mode) it belongs to; "" when a run has one frame
   std::string pass;      // "" outside post passes
   std::string strategy;  // "" outside post passes
+  std::string sweepPoint = {};  // "threshold=0.05" for a pass run at a point of a sweep axis
 };
 
 // Moves the reports the machine holds into `log`, labelled; the machine keeps none, so a long run
 // holds each report once.
 inline void TakeDispatches(sim::Machine& machine, std::vector<DispatchRecord>& log, const std::string& frame,
-                           const std::string& pass = "", const std::string& strategy = "") {
-  for (sim::DispatchReport& report : machine.TakeReports()) log.push_back({std::move(report), frame, pass, strategy});
+                           const std::string& pass = "", const std::string& strategy = "",
+                           const std::string& sweepPoint = "") {
+  for (sim::DispatchReport& report : machine.TakeReports()) {
+    log.push_back({std::move(report), frame, pass, strategy, sweepPoint});
+  }
 }
 
 }  // namespace study

@@ -24,6 +24,14 @@ struct GroundTruthConfig {
   std::optional<std::filesystem::path> cache;
 };
 
+// One sweep axis: a setting of one of the run's passes, run at each value (each a study entry of
+// its own, with its sweep point "setting=value").
+struct SweepAxis {
+  std::string pass;     // a pass of ExperimentConfig::passes
+  std::string setting;  // a key of its settings schema
+  std::vector<double> values;
+};
+
 struct ExperimentConfig {
   std::string scene = "builtin:default";  // "builtin:NAME" or a glTF path
   int width = 1920, height = 1080;
@@ -43,6 +51,8 @@ struct ExperimentConfig {
   bool depthPrepass = false;
   int maxZPlanes = 4;  // hw-facts §5.2 default
   std::vector<passes::PassConfig> passes;
+  // Settings swept instead of run once (at most one axis per pass).
+  std::vector<SweepAxis> sweeps;
   // Resolves (passes/resolve.h) run on every mode they read, besides the frame's box resolve.
   std::vector<std::string> resolves = passes::ResolveNames();
   // Where tables resolves derive from the sample pattern (the CRAA LUT) are cached between runs.

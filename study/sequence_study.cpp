@@ -58,7 +58,7 @@ double MeanCodeDistance(const std::vector<std::uint8_t>& a, const std::vector<st
 }
 
 struct TrackState {
-  const passes::PassConfig* pass = nullptr;  // null: the drawn frames
+  const PlannedPass* pass = nullptr;  // null: the drawn frames
   std::vector<passes::Strategy> strategies;
   std::vector<std::unique_ptr<passes::Pass>> instances;  // one per strategy, for the whole sequence
   std::optional<sim::Texture2D<glm::vec4>> previous;
@@ -91,7 +91,7 @@ class SequenceStudy {
     sequence.cameraPath = std::string(scenes::CameraPathKindName(config_.sequence.cameraPath.kind));
     sequence.framesPerSecond = config_.sequence.framesPerSecond;
     sequence.groundTruthStill = NothingMoves();
-    for (const passes::PassConfig& pass : config_.passes) AddPass(pass);
+    for (const PlannedPass& pass : planned_) AddPass(pass);
     std::optional<StudyGroundTruth> previousTruth;
     for (int frame = 0; frame < frames; ++frame) {
       StudyGroundTruth truth = GroundTruthAt(frame, previousTruth);
@@ -155,7 +155,7 @@ class SequenceStudy {
     group.renderer = std::make_unique<SequenceRenderer>(
         machine_, inputs_.scene, inputs_.frame, FrameSettingsFor(inputs_, config_, mode, pattern, config_.policy),
         raster::JitterSchedule::Make(schedule, pattern), config_.sequence);
-    AddTrack(group, nullptr, "frames");
+    AddTrack(group, nullptr);
     return group;
   }
 
@@ -163,18 +163,21 @@ class SequenceStudy {
     return "sequence/" + group.schedule + "-" + ModeSlug(group.mode);
   }
 
-  void AddTrack(GroupState& group, const passes::PassConfig* pass, const std::string& technique) {
+  void AddTrack(GroupState& group, const PlannedPass* pass) {
     SequenceTrack track;
-    track.technique = technique;
-    track.pass = pass ? technique : "";
-    track.folder = GroupFolder(group.result) + "/" + technique;
+    track.technique = "frames";
+    track.folder = GroupFolder(group.result) + "/frames";
     TrackState state;
     state.pass = pass;
     if (pass) {
-      state.strategies = ChosenStrategies(config_, pass->Info());
-      if (state.strategies.empty()) throw std::invalid_argument("pass " + technique + " runs under none of the chosen strategies");
+      const std::string name(pass->config.Info().name);
+      track.technique = pass->sweepPoint.empty() ? name : name + " " + pass->sweepPoint;
+      track.pass = name;
+      track.folder = GroupFolder(group.result) + "/" + name + (pass->sweepPoint.empty() ? "" : "/" + SweepSlug(pass->sweepPoint));
+      state.strategies = ChosenStrategies(config_, pass->config.Info());
+      if (state.strategies.empty()) throw std::invalid_argument("pass " + name + " runs under none of the chosen strategies");
       for (const passes::Strategy strategy : state.strategies) {
-        state.instances.push_back(pass->Make());
+        state.instances.push_back(pass->config.Make());
         track.runs.push_back({strategy, {}});
       }
     } else {
@@ -184,9 +187,9 @@ class SequenceStudy {
     group.tracks.push_back(std::move(state));
   }
 
-  void AddPass(const passes::PassConfig& pass) {
-    GroupState& group = GroupFor(pass.Info());
-    AddTrack(group, &pass, std::string(pass.Info().name));
+  void AddPass(const PlannedPass& pass) {
+    GroupState& group = GroupFor(pass.config.Info());
+    AddTrack(group, &pass);
   }
 
   std::string FrameLabel(const SequenceGroup& group, int frame) const {
@@ -229,7 +232,7 @@ class SequenceStudy {
 
   void RunTrack(SequenceGroup& group, SequenceTrack& track, TrackState& state, const passes::FrameInputs& inputs,
                 const FrameContext& context) {
-    const bool entry = LastFrame(context.frame) && state.pass->Info().temporal;
+    const bool entry = LastFrame(context.frame) && state.pass->config.Info().temporal;
     std::optional<StudyPass> result;
     if (entry) result = NewStudyPass(*state.pass, context.label);
     std::optional<passes::PassOutput> first;
@@ -243,7 +246,7 @@ class SequenceStudy {
         StudyPassRun run{.strategy = state.strategies[s], .firstDispatch = study_.dispatches.size(), .endDispatch = 0,
                          .layers = output.layers};
         for (sim::DispatchReport& report : reports) {
-          study_.dispatches.push_back({std::move(report), context.label, track.technique, strategyName});
+          study_.dispatches.push_back({std::move(report), context.label, track.pass, strategyName, state.pass->sweepPoint});
         }
         run.endDispatch = study_.dispatches.size();
         result->runs.push_back(std::move(run));
@@ -291,6 +294,7 @@ class SequenceStudy {
   const StudyObserver& observer_;
   sim::Machine& machine_;
   Study& study_;
+  const std::vector<PlannedPass> planned_ = PlanPasses(config_);
   std::vector<GroupState> groups_;
 };
 

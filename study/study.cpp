@@ -97,15 +97,20 @@ std::vector<passes::Strategy> ChosenStrategies(const ExperimentConfig& config, c
   return chosen;
 }
 
-StudyPass NewStudyPass(const passes::PassConfig& config, const std::string& frameLabel) {
-  const passes::PassInfo& info = config.Info();
+StudyPass NewStudyPass(const PlannedPass& planned, const std::string& frameLabel) {
+  const passes::PassInfo& info = planned.config.Info();
   const std::string name(info.name);
-  return {.name = name,
-          .description = std::string(info.description),
-          .studiedDispatch = std::string(info.studiedDispatches.front()),
-          .settings = passes::DescribeSettings(config.settings),
-          .inputFrame = frameLabel,
-          .image = {name, "passes/" + name, {"pass output", 1, 1}, {}}};
+  std::string folder = "passes/" + name;
+  if (!planned.sweepPoint.empty()) folder += "/" + SweepSlug(planned.sweepPoint);
+  StudyPass pass{.name = name,
+                 .sweepPoint = planned.sweepPoint,
+                 .description = std::string(info.description),
+                 .studiedDispatch = std::string(info.studiedDispatches.front()),
+                 .settings = passes::DescribeSettings(planned.config.settings),
+                 .inputFrame = frameLabel,
+                 .image = {name, folder, {"pass output", 1, 1}, {}}};
+  pass.image.label = pass.Label();
+  return pass;
 }
 
 void FinishStudyPass(StudyPass result, passes::PassOutput first, const StudyGroundTruth& groundTruth,
@@ -117,7 +122,7 @@ void FinishStudyPass(StudyPass result, passes::PassOutput first, const StudyGrou
   result.image.quality = Step(observer, "metrics " + result.name,
                               [&] { return ScoreAgainstGroundTruth(result.image.colour, groundTruth); });
   for (const StudyPass& earlier : study.passes) {
-    if (earlier.name == info.variantOf && earlier.inputFrame == result.inputFrame) {
+    if (earlier.name == info.variantOf && earlier.sweepPoint.empty() && earlier.inputFrame == result.inputFrame) {
       result.variant = CompareVariant(earlier.name, result.image.colour, earlier.image.colour);
     }
   }
@@ -204,8 +209,8 @@ class StudyRunner {
       frame.srgb8 = std::move(srgb8);
     }
     if (observer_.frameDone) observer_.frameDone(frame, pipeline);
-    for (const passes::PassConfig& pass : config_.passes) {
-      if (SingleFramePass(pass) && PassFrame(config_, pass.Info()) == mode) RunPass(pass, pipeline, label);
+    for (const PlannedPass& pass : planned_) {
+      if (SingleFramePass(pass.config) && PassFrame(config_, pass.config.Info()) == mode) RunPass(pass, pipeline, label);
     }
     study_.frames.push_back(std::move(frame));
   }
@@ -242,8 +247,9 @@ class StudyRunner {
   }
 
   bool FeedsAPass(std::size_t mode) const {
-    return std::any_of(config_.passes.begin(), config_.passes.end(),
-                       [&](const passes::PassConfig& pass) { return SingleFramePass(pass) && PassFrame(config_, pass.Info()) == mode; });
+    return std::any_of(config_.passes.begin(), config_.passes.end(), [&](const passes::PassConfig& pass) {
+      return SingleFramePass(pass) && PassFrame(config_, pass.Info()) == mode;
+    });
   }
 
   // A temporal pass in a multi-frame run runs on the sequence only (its single-frame entry is
@@ -252,8 +258,9 @@ class StudyRunner {
     return !pass.Info().temporal || config_.sequence.frames <= 1;
   }
 
-  void RunPass(const passes::PassConfig& config, const sim::FramePipeline& pipeline, const std::string& frameLabel) {
-    StudyPass result = NewStudyPass(config, frameLabel);
+  void RunPass(const PlannedPass& planned, const sim::FramePipeline& pipeline, const std::string& frameLabel) {
+    const passes::PassConfig& config = planned.config;
+    StudyPass result = NewStudyPass(planned, frameLabel);
     const std::vector<passes::Strategy> strategies = ChosenStrategies(config_, config.Info());
     if (strategies.empty()) throw std::invalid_argument("pass " + result.name + " runs under none of the chosen strategies");
     std::optional<passes::PassOutput> first;
@@ -262,10 +269,10 @@ class StudyRunner {
       StudyPassRun run{.strategy = strategy, .firstDispatch = study_.dispatches.size(), .endDispatch = 0, .layers = {}};
       // One instance per strategy: a pass with history must not carry one strategy's into the other's.
       const std::unique_ptr<passes::Pass> pass = config.Make();
-      passes::PassOutput output = Step(observer_, "pass " + result.name + " [" + strategyName + "]", [&] {
+      passes::PassOutput output = Step(observer_, "pass " + result.Label() + " [" + strategyName + "]", [&] {
         return pass->Run(machine_, passes::FrameInputsOf(pipeline), strategy);
       });
-      TakeDispatches(machine_, study_.dispatches, frameLabel, result.name, strategyName);
+      TakeDispatches(machine_, study_.dispatches, frameLabel, result.name, strategyName, result.sweepPoint);
       run.endDispatch = study_.dispatches.size();
       run.layers = output.layers;
       if (!first) {
@@ -281,6 +288,7 @@ class StudyRunner {
   const StudyInputs& inputs_;
   const ExperimentConfig& config_;
   const StudyObserver& observer_;
+  const std::vector<PlannedPass> planned_ = PlanPasses(config_);
   sim::Machine machine_;
   Study study_;
   std::map<std::pair<std::string, std::size_t>, std::unique_ptr<passes::Resolve>> resolves_;
@@ -326,8 +334,63 @@ StudyInputs LoadStudyInputs(const ExperimentConfig& config) {
     inputs.patterns.push_back(raster::ResolvePattern(config.pattern, mode.coverageSamples));
   }
   for (const std::string& resolve : config.resolves) passes::ResolveByName(resolve);
+  PlanPasses(config);
   for (const std::string& policy : config.comparedPolicies) fmask::PolicyByName(policy);
   return inputs;
+}
+
+namespace {
+const passes::PassConfig& SweptPass(const ExperimentConfig& config, const SweepAxis& axis) {
+  const auto found = std::find_if(config.passes.begin(), config.passes.end(),
+                                  [&](const passes::PassConfig& pass) { return pass.Info().name == axis.pass; });
+  if (found == config.passes.end()) throw std::invalid_argument("sweep " + axis.pass + ":" + axis.setting + ": " + axis.pass + " is not a pass of the run");
+  return *found;
+}
+
+void CheckSweepValues(const SweepAxis& axis) {
+  const std::string where = "sweep " + axis.pass + ":" + axis.setting;
+  if (axis.values.empty()) throw std::invalid_argument(where + ": no values");
+  for (std::size_t i = 0; i < axis.values.size(); ++i) {
+    if (std::find(axis.values.begin(), axis.values.begin() + static_cast<std::ptrdiff_t>(i), axis.values[i]) !=
+        axis.values.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw std::invalid_argument(where + ": " + passes::FormatValue(axis.values[i]) + " is given twice");
+    }
+  }
+}
+}  // namespace
+
+std::string SweepSlug(const std::string& sweepPoint) {
+  std::string slug = sweepPoint;
+  std::replace(slug.begin(), slug.end(), '=', '-');
+  return slug;
+}
+
+std::vector<PlannedPass> PlanPasses(const ExperimentConfig& config) {
+  for (std::size_t a = 0; a < config.sweeps.size(); ++a) {
+    SweptPass(config, config.sweeps[a]);
+    CheckSweepValues(config.sweeps[a]);
+    for (std::size_t b = 0; b < a; ++b) {
+      if (config.sweeps[b].pass == config.sweeps[a].pass) {
+        throw std::invalid_argument("sweep " + config.sweeps[a].pass + ":" + config.sweeps[a].setting + ": pass " +
+                                    config.sweeps[a].pass + " already has a sweep axis (" + config.sweeps[b].setting + ")");
+      }
+    }
+  }
+  std::vector<PlannedPass> planned;
+  for (const passes::PassConfig& pass : config.passes) {
+    const auto axis = std::find_if(config.sweeps.begin(), config.sweeps.end(),
+                                   [&](const SweepAxis& each) { return each.pass == pass.Info().name; });
+    if (axis == config.sweeps.end()) {
+      planned.push_back({pass, ""});
+      continue;
+    }
+    for (const double value : axis->values) {
+      PlannedPass point{pass, axis->setting + "=" + passes::FormatValue(value)};
+      point.config.settings.Set(axis->setting, value);
+      planned.push_back(std::move(point));
+    }
+  }
+  return planned;
 }
 
 Study RunStudy(const StudyInputs& inputs, const ExperimentConfig& config, const StudyObserver& observer) {

@@ -83,6 +83,7 @@ VariantDifference CompareVariant(std::string baseline, const sim::Texture2D<glm:
 
 struct StudyPass {
   std::string name;
+  std::string sweepPoint;  // "threshold=0.05" at a point of a sweep axis, else ""
   std::string description;
   std::string studiedDispatch;
   std::string settings;    // "threshold=0.1"
@@ -94,6 +95,9 @@ struct StudyPass {
   // The first difference of a later strategy's output from the first's (passes/compare.h).
   passes::StrategyDifference difference{};
   std::optional<VariantDifference> variant{};  // when the pass it varies ran on the same frame
+
+  // The name, with the sweep point when there is one: "smaa threshold=0.05".
+  std::string Label() const { return sweepPoint.empty() ? name : name + " " + sweepPoint; }
 };
 
 struct StudyGroundTruth {
@@ -189,8 +193,20 @@ struct StudyInputs {
   sim::GpuConfig gpu;
 };
 
-// Throws a one-line error naming the input (scene, pattern, GPU configuration).
+// Throws a one-line error naming the input (scene, pattern, GPU configuration, a sweep axis).
 StudyInputs LoadStudyInputs(const ExperimentConfig& config);
+
+// Every pass run the configuration asks for: each pass once, or once per value of its sweep axis
+// with that value set. Throws std::invalid_argument for an axis naming no pass of the run, two
+// axes on one pass, no values or a repeated value, and passes::SettingsError for an unknown
+// setting or a value outside its range.
+struct PlannedPass {
+  passes::PassConfig config;
+  std::string sweepPoint;  // "" without an axis
+};
+std::vector<PlannedPass> PlanPasses(const ExperimentConfig& config);
+// "threshold=0.05" -> "threshold-0.05", for folder names.
+std::string SweepSlug(const std::string& sweepPoint);
 
 // What the caller sees while the study runs. Every member may be empty.
 struct StudyObserver {

@@ -51,7 +51,7 @@ sim::FrameSettings FrameSettingsFor(const StudyInputs& inputs, const ExperimentC
 std::vector<passes::Strategy> ChosenStrategies(const ExperimentConfig& config, const passes::PassInfo& info);
 
 // A pass's study entry before its runs: name, settings, the frame it read.
-StudyPass NewStudyPass(const passes::PassConfig& config, const std::string& frameLabel);
+StudyPass NewStudyPass(const PlannedPass& planned, const std::string& frameLabel);
 // Completes the entry from the first strategy's output (image, quality, variant), hands it to
 // the observer and appends it to the study.
 void FinishStudyPass(StudyPass result, passes::PassOutput first, const StudyGroundTruth& groundTruth,

@@ -285,7 +285,10 @@ TEST(CliRun, BadResolveAndPolicyListsAreUsageErrors) {
       {{"--compare-policies", "hraa"}, "--compare-policies: hraa is already the run's --policy"},
       {{"--compare-policies", "nosuch"}, "--compare-policies: unknown name 'nosuch'"},
       {{"--lut-configurations", "0"}, "--lut-configurations"},
-      {{"--lut-configurations", "9999999"}, "--lut-configurations"}};
+      {{"--lut-configurations", "9999999"}, "--lut-configurations"},
+      {{"--post", "smaa", "--sweep", "fxaa:threshold=0.1"}, "--sweep fxaa:threshold=0.1: fxaa is not a pass of the run"},
+      {{"--sweep", "smaa:threshold=0.1,x"}, "--sweep smaa:threshold=0.1,x: 'x' is not a finite decimal"},
+      {{"--sweep", "smaa"}, "--sweep smaa: expected PASS:SETTING=V1,V2,..."}};
   for (const auto& [extra, message] : cases) {
     std::vector<std::string> args = {"run", "--quick", "--out", (scratch / "out").string()};
     args.insert(args.end(), extra.begin(), extra.end());
