@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "passes/pass.h"
+#include "passes/smaa/smaa_kernels.h"
 
 namespace passes::smaa {
 
@@ -42,6 +43,11 @@ enum class Variant { Luma, Colour, Depth, LumaPredicated, S2x };
 // SMAA's searches; `thresholdDoc` says what the threshold means to that pass.
 std::vector<SettingInfo> SearchSettings(std::string_view thresholdDoc);
 std::vector<Preset> SearchPresets();
+
+// A variant's settings (SearchSettings plus its own) and the kernels' configuration from them,
+// for the passes built on a variant (T2x and 4x on luma SMAA).
+std::vector<SettingInfo> SettingsOf(Variant variant);
+Config ConfigOf(Variant variant, const PassSettings& settings);
 
 template <Variant V>
 const PassInfo& Info();
