@@ -10,6 +10,7 @@
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
 #include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
+#include "passes/smaa/smaa_1tx.h"
 #include "passes/smaa/smaa_temporal.h"
 
 namespace passes {
@@ -25,6 +26,7 @@ std::span<const RegisteredPass> AllPasses() {
       {smaa::Info<smaa::Variant::S2x>, smaa::Make<smaa::Variant::S2x>},
       {smaa::T2xInfo, smaa::MakeT2x},
       {smaa::FourXInfo, smaa::MakeFourX},
+      {smaa::OneTxInfo, smaa::MakeOneTx},
       {filmic_smaa::Info, filmic_smaa::Make},
       {fxaa::Info, fxaa::Make},
       {fxaa_miniengine::Info, fxaa_miniengine::Make},
