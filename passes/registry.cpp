@@ -6,6 +6,7 @@
 #include "passes/copy/copy.h"
 #include "passes/demo/demo.h"
 #include "passes/filmic_smaa/filmic_smaa.h"
+#include "passes/filmic_smaa/filmic_t2x.h"
 #include "passes/fxaa/fxaa.h"
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
 #include "passes/mlaa/mlaa.h"
@@ -28,6 +29,7 @@ std::span<const RegisteredPass> AllPasses() {
       {smaa::FourXInfo, smaa::MakeFourX},
       {smaa::OneTxInfo, smaa::MakeOneTx},
       {filmic_smaa::Info, filmic_smaa::Make},
+      {filmic_smaa::FilmicT2xInfo, filmic_smaa::MakeFilmicT2x},
       {fxaa::Info, fxaa::Make},
       {fxaa_miniengine::Info, fxaa_miniengine::Make},
       {mlaa::Info<mlaa::Thresholding::Relative>, mlaa::Make<mlaa::Thresholding::Relative>},
