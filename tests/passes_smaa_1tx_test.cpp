@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <oneapi/tbb/global_control.h>
+
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "passes_test_util.h"
 #include "sim/formats.h"
 #include "sim/gpu_config.h"
+#include "sim_test_util.h"
 
 namespace passes {
 namespace {
@@ -40,16 +43,27 @@ TEST(SmaaOneTx, TheFormulaMatchesHandComputedValues) {
       << "w_k = 0.5: frames = 4";
 }
 
-std::vector<PassOutput> RunFrames(const std::vector<sim::Texture2D<glm::vec4>>& frames, Strategy strategy) {
+struct SequenceRun {
+  std::vector<PassOutput> outputs;
+  std::vector<sim::DispatchReport> reports;
+};
+
+SequenceRun RunSequence(const std::vector<sim::Texture2D<glm::vec4>>& frames, Strategy strategy, int threads = 2) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   const std::unique_ptr<Pass> pass = ResolvePass("smaa-1tx").Make();
   sim::Texture2D<glm::vec2> still("velocity", frames.front().Width(), frames.front().Height());
-  std::vector<PassOutput> outputs;
+  SequenceRun run;
   for (std::size_t k = 0; k < frames.size(); ++k) {
-    outputs.push_back(pass->Run(
+    run.outputs.push_back(pass->Run(
         machine, {.colour = &frames[k], .velocity = &still, .frameIndex = static_cast<int>(k)}, strategy));
   }
-  return outputs;
+  run.reports = machine.Reports();
+  return run;
+}
+
+std::vector<PassOutput> RunFrames(const std::vector<sim::Texture2D<glm::vec4>>& frames, Strategy strategy) {
+  return RunSequence(frames, strategy).outputs;
 }
 
 // Frame 0 uniform code 100; frame 1 the same with one pixel at 120 (below SMAA's threshold, so SMAA
@@ -70,16 +84,32 @@ TEST(SmaaOneTx, ABrightPixelBlendsWithItsClampedHistoryByHand) {
   EXPECT_EQ(sim::FloatToSrgb8(outputs[0].colour.At(3, 4).g), 100);
 }
 
-TEST(SmaaOneTx, StrategiesGiveIdenticalImagesOverASequence) {
+std::vector<sim::Texture2D<glm::vec4>> MovingStripes() {
   std::vector<sim::Texture2D<glm::vec4>> frames;
   for (int k = 0; k < 4; ++k) {
     frames.push_back(GreyImage(40, 32, [k](int x, int y) { return (x + 2 * k) / 5 % 2 == 0 && y > 6 ? 210 : 50; }));
   }
+  return frames;
+}
+
+TEST(SmaaOneTx, StrategiesGiveIdenticalImagesOverASequence) {
+  const std::vector<sim::Texture2D<glm::vec4>> frames = MovingStripes();
   const std::vector<PassOutput> stencil = RunFrames(frames, Strategy::StencilCulled);
   const std::vector<PassOutput> queue = RunFrames(frames, Strategy::DeferredQueue);
   for (std::size_t k = 0; k < frames.size(); ++k) {
     EXPECT_GT(stencil[k].workItems, 0u);
     EXPECT_TRUE(CompareOutputs(stencil[k], queue[k]).Identical()) << k << ": " << CompareOutputs(stencil[k], queue[k]).Describe();
+  }
+}
+
+TEST(SmaaOneTx, OneAndTwoThreadsGiveIdenticalImagesAndCountersOverASequence) {
+  const std::vector<sim::Texture2D<glm::vec4>> frames = MovingStripes();
+  for (const Strategy strategy : kAllStrategies) {
+    const SequenceRun one = RunSequence(frames, strategy, 1), two = RunSequence(frames, strategy, 2);
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      EXPECT_TRUE(CompareOutputs(one.outputs[k], two.outputs[k]).Identical()) << StrategyName(strategy) << " " << k;
+    }
+    sim::testing::ExpectSameReports(one.reports, two.reports);
   }
 }
 
