@@ -14,6 +14,7 @@
 #include <limits>
 
 #include <glm/common.hpp>
+#include <glm/exponential.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
