@@ -1,5 +1,5 @@
 // Filmic SMAA T2x (passes/filmic_smaa/filmic_t2x.h) over synthetic sequences: the FPS-aware
-// history weight, the 5-tap history filter, a disocclusion without a ghost, and both strategies
+// history weight, a disocclusion without a ghost, and both strategies
 // and 1 vs 2 threads over a sequence with temporal edges.
 
 #include <gtest/gtest.h>
@@ -157,24 +157,6 @@ TEST(FilmicSmaaT2x, StrategiesAndThreadsGiveIdenticalImagesAndCountersOverASeque
   }
   EXPECT_GT(temporalItems, 0u);
   sim::testing::ExpectSameReports(queue.reports, queueOne.reports);
-}
-
-// The 5-tap filter reproduces a linear ramp exactly (a cubic interpolates it) and a constant.
-TEST(FilmicSmaaT2x, TheHistoryFilterKeepsConstantsAndRamps) {
-  sim::Texture2D<glm::vec4> ramp("ramp", 16, 16, sim::Format::RGBA16Float);
-  for (int y = 0; y < 16; ++y) {
-    for (int x = 0; x < 16; ++x) ramp.At(x, y) = glm::vec4(0.25f, 0.05f * static_cast<float>(x), 0.03f * static_cast<float>(y), 1.0f);
-  }
-  sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  sim::Dispatch d("test/filter", {.vgprs = 8, .sgprs = 8, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 1, .source = "test"});
-  const sim::TextureView<glm::vec4> view = d.Read(ramp);
-  machine.FullScreen(d, {.width = 1, .height = 1}, [&](sim::PixelLane& lane) {
-    // Texel space (6.8, 7.3): pixel-centre coordinates 6.3 and 6.8 from texel 0's centre.
-    const glm::vec3 c = filmic_smaa::FilterHistory(lane, view, glm::vec2(6.8f, 7.3f) / 16.0f, glm::vec2(16.0f), 0.5f);
-    EXPECT_NEAR(c.x, 0.25f, 1e-3f);
-    EXPECT_NEAR(c.y, 0.05f * 6.3f, 2e-3f);
-    EXPECT_NEAR(c.z, 0.03f * 6.8f, 2e-3f);
-  });
 }
 
 }  // namespace

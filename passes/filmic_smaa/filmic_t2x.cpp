@@ -13,33 +13,12 @@
 #include "passes/smaa/smaa_kernels.h"
 #include "passes/smaa/smaa_temporal.h"
 #include "passes/smaa/temporal_resolve.h"
+#include "passes/temporal/history_filter.h"
 #include "passes/work_set.h"
 #include "sim/colour.h"
 #include "sim/formats.h"
 
 namespace passes::filmic_smaa {
-
-glm::vec3 FilterHistory(const sim::LaneBase& lane, const sim::TextureView<glm::vec4>& history, glm::vec2 uv,
-                        glm::vec2 size, float sharpness) {
-  const glm::vec2 position = size * uv;
-  const glm::vec2 centre = glm::floor(position - 0.5f) + 0.5f;
-  const glm::vec2 f = position - centre, f2 = f * f, f3 = f * f2;
-  const float c = sharpness;
-  const glm::vec2 w0 = -c * f3 + 2.0f * c * f2 - c * f;
-  const glm::vec2 w1 = (2.0f - c) * f3 - (3.0f - c) * f2 + 1.0f;
-  const glm::vec2 w2 = -(2.0f - c) * f3 + (3.0f - 2.0f * c) * f2 + c * f;
-  const glm::vec2 w3 = c * f3 - c * f2;
-  const glm::vec2 w12 = w1 + w2;
-  const glm::vec2 texel = 1.0f / size;
-  const glm::vec2 tc12 = texel * (centre + w2 / w12), tc0 = texel * (centre - 1.0f), tc3 = texel * (centre + 2.0f);
-  const auto tap = [&](float u, float v, float weight) {
-    return glm::vec4(glm::vec3(history.SampleBilinear(lane, {u, v})), 1.0f) * weight;
-  };
-  const glm::vec4 sum = tap(tc12.x, tc0.y, w12.x * w0.y) + tap(tc0.x, tc12.y, w0.x * w12.y) +
-                        tap(tc12.x, tc12.y, w12.x * w12.y) + tap(tc3.x, tc12.y, w3.x * w12.y) +
-                        tap(tc12.x, tc3.y, w12.x * w3.y);
-  return glm::vec3(sum) / sum.w;
-}
 
 namespace {
 
@@ -266,7 +245,7 @@ class FilmicT2xPass final : public Pass {
       const sim::RwTextureView<glm::vec4> out = d.ReadWrite(target);
       return [=](const auto& lane, int x, int y) {
         const glm::vec2 uv = smaa::Metrics::Of(width, height).Texcoord(x, y);
-        const glm::vec3 filtered = FilterHistory(lane, before, uv - motion.SamplePoint(lane, uv), size, s.sharpness);
+        const glm::vec3 filtered(temporal::SampleHistoryFilmic(before, lane, uv - motion.SamplePoint(lane, uv), s.sharpness));
         glm::vec3 low(1e30f), high(-1e30f);
         for (int dy = -1; dy <= 1; ++dy) {
           for (int dx = -1; dx <= 1; ++dx) {

@@ -37,7 +37,8 @@
 //                                     resolved (which "resets the accumulation buffer"); the
 //                                     others are temporal edges and join the work set
 //     temporal-filter (consume)       the history through the 5-tap Catmull-Rom filter (seed 000's
-//                                     SMAAFilterHistory, sharpness c), clamped to resolved's 3x3
+//                                     SMAAFilterHistory, sharpness c: passes/temporal's
+//                                     SampleHistoryFilmic), clamped to resolved's 3x3
 //                                     min/max, out = history a + resolved (1 - a) with the
 //                                     FPS-aware a = exp(-dt / convergence_time), dt =
 //                                     FrameInputs::frameSeconds
@@ -61,12 +62,7 @@
 #include <cmath>
 #include <memory>
 
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
-
 #include "passes/pass.h"
-#include "sim/views.h"
 
 namespace passes::filmic_smaa {
 
@@ -76,12 +72,6 @@ namespace passes::filmic_smaa {
 inline float HistoryWeight(double frameSeconds, double convergenceSeconds) {
   return static_cast<float>(std::exp(-frameSeconds / convergenceSeconds));
 }
-
-// Seed 000's SMAAFilterHistory: the 4x4 bicubic (Catmull-Rom for sharpness 0.5) as 5 bilinear taps
-// (the 9-tap decomposition without its corners), renormalised by the taps' summed weight.
-// `size`: the texture's (W, H).
-glm::vec3 FilterHistory(const sim::LaneBase& lane, const sim::TextureView<glm::vec4>& history, glm::vec2 uv,
-                        glm::vec2 size, float sharpness);
 
 const PassInfo& FilmicT2xInfo();
 std::unique_ptr<Pass> MakeFilmicT2x(const PassSettings& settings);
