@@ -90,8 +90,9 @@ class FilmicT2xPass final : public Pass {
     morphological_.SetSubsampleIndices(smaa::T2xSubsampleIndices(frame.frameIndex));
     WorkSetShape shape = morphological_.Run(machine, strategy, colour, morph, *edges_);
     const std::vector<std::uint8_t> items = morphological_.Membership(strategy);
-    smaa::StoreUvVelocity(frame, velocity_[static_cast<std::size_t>(frames_ % 2)],
-                          std::string(kPass) + "/velocity" + std::to_string(frames_ % 2), width, height);
+    const std::size_t slot = static_cast<std::size_t>(frames_ % 2);
+    const std::string velocityName = std::string(kPass) + "/velocity" + std::to_string(slot);
+    smaa::StoreUvVelocity(frame, velocity_[slot], velocityName, width, height);
     StoreLuma(machine);
     DownsampleDepth(machine, *frame.depth);
     Supersample(machine, frame.jitter);
@@ -171,8 +172,8 @@ class FilmicT2xPass final : public Pass {
     const int known = std::min(frames_, 3);
     sim::Dispatch d(std::string(kPass) + "/supersample", kSupersample);
     const sim::TextureView<glm::vec4> now = d.Read(current), before = d.Read(previous);
-    const sim::TextureView<glm::vec2> vNow = d.Read(*velocity_[static_cast<std::size_t>(frames_ % 2)]);
-    const sim::TextureView<glm::vec2> vBefore = d.Read(*velocity_[static_cast<std::size_t>((frames_ + hasPrevious) % 2)]);
+    const sim::TextureView<glm::vec2> vNow = d.Read(Ring(velocity_, frames_));
+    const sim::TextureView<glm::vec2> vBefore = d.Read(Ring(velocity_, frames_ + (hasPrevious ? 1 : 0)));
     std::vector<sim::TextureView<float>> luma;
     for (int k = 0; k <= known; ++k) luma.push_back(d.Read(Ring(luma_, frames_ + 4 - k)));
     const sim::RwTextureView<glm::vec4> out = d.ReadWrite(*resolved_);
@@ -187,9 +188,15 @@ class FilmicT2xPass final : public Pass {
       const glm::vec2 back = uv - v;
       const float velocityWeight = smaa::Saturate(
           1.0f - std::sqrt(std::fabs(glm::length(v) - glm::length(vBefore.SamplePoint(lane, back)))) * s.weightScale);
-      float colourWeight = 1.0f;
-      if (known >= 2) colourWeight *= smaa::Saturate(1.0f - Sad(luma[0].Gather(lane, uv), luma[2].Gather(lane, uv - 2.0f * v)) * s.colourWeightScale);
-      if (known >= 3) colourWeight *= smaa::Saturate(1.0f - Sad(luma[1].Gather(lane, back), luma[3].Gather(lane, uv - 3.0f * v)) * s.colourWeightScale);
+      // Colour weights: frames of equal jitter compared, N with N-2 and N-1 with N-3.
+      const auto colourWeight = [&](int newer, int older) {
+        if (older > known) return 1.0f;
+        const glm::vec2 at = uv - static_cast<float>(newer) * v, olderAt = uv - static_cast<float>(older) * v;
+        const float sad = Sad(luma[static_cast<std::size_t>(newer)].Gather(lane, at),
+                              luma[static_cast<std::size_t>(older)].Gather(lane, olderAt));
+        return smaa::Saturate(1.0f - sad * s.colourWeightScale);
+      };
+      const float colourWeights = colourWeight(0, 2) * colourWeight(1, 3);
       // Contrast-aware quincunx: the previous frame's four samples around this frame's.
       const glm::vec4 around = luma[1].Gather(lane, back + quincunx / size);
       const float contrast = std::max(std::max(around.x, around.y), std::max(around.z, around.w)) -
@@ -201,7 +208,7 @@ class FilmicT2xPass final : public Pass {
       glm::vec2 f = position - base;
       f = f * f * (3.0f - 2.0f * f);
       const glm::vec4 earlier = before.SampleBilinear(lane, (base + f + 0.5f) / size);
-      out.Store(lane, lane.x, lane.y, smaa::Lerp(centre, earlier, 0.5f * velocityWeight * colourWeight));
+      out.Store(lane, lane.x, lane.y, smaa::Lerp(centre, earlier, 0.5f * velocityWeight * colourWeights));
     });
   }
 
@@ -212,7 +219,7 @@ class FilmicT2xPass final : public Pass {
     const sim::Texture2D<glm::vec4>& historyTarget = hasHistory ? Ring(filtered_, frames_ + 1) : *resolved_;
     const sim::Texture2D<float>& depthNow = Ring(depth_, frames_);
     const sim::Texture2D<float>& depthBefore = hasHistory ? Ring(depth_, frames_ + 1) : depthNow;
-    const sim::Texture2D<glm::vec2>& velocity = *velocity_[static_cast<std::size_t>(frames_ % 2)];
+    const sim::Texture2D<glm::vec2>& velocity = Ring(velocity_, frames_);
     const int width = target.Width(), height = target.Height();
     const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
     const TemporalSettings s = settings_;
@@ -245,18 +252,21 @@ class FilmicT2xPass final : public Pass {
       const sim::RwTextureView<glm::vec4> out = d.ReadWrite(target);
       return [=](const auto& lane, int x, int y) {
         const glm::vec2 uv = smaa::Metrics::Of(width, height).Texcoord(x, y);
-        const glm::vec3 filtered(temporal::SampleHistoryFilmic(before, lane, uv - motion.SamplePoint(lane, uv), s.sharpness));
+        const glm::vec2 back = uv - motion.SamplePoint(lane, uv);
+        const glm::vec3 filtered(temporal::SampleHistoryFilmic(before, lane, back, s.sharpness));
         glm::vec3 low(1e30f), high(-1e30f);
         for (int dy = -1; dy <= 1; ++dy) {
           for (int dx = -1; dx <= 1; ++dx) {
-            const glm::vec3 n(resolved.Load(lane, std::clamp(x + dx, 0, width - 1), std::clamp(y + dy, 0, height - 1)));
+            const int nx = std::clamp(x + dx, 0, width - 1), ny = std::clamp(y + dy, 0, height - 1);
+            const glm::vec3 n(resolved.Load(lane, nx, ny));
             low = glm::min(low, n);
             high = glm::max(high, n);
           }
         }
         const glm::vec4 current = resolved.Load(lane, x, y);
         const glm::vec3 clamped = glm::clamp(filtered, low, high);
-        out.Store(lane, x, y, glm::vec4(clamped * historyWeight + glm::vec3(current) * (1.0f - historyWeight), current.a));
+        const glm::vec3 blended = clamped * historyWeight + glm::vec3(current) * (1.0f - historyWeight);
+        out.Store(lane, x, y, glm::vec4(blended, current.a));
       };
     };
     const WorkSetKernels kernels{.detectDispatch = "filmic-smaa-t2x/temporal-edges",
@@ -326,7 +336,8 @@ const PassInfo& FilmicT2xInfo() {
       // Colour, resolved, two morph targets, two RGBA16F histories, the output copy (vec4 each);
       // edges and two velocities (vec2); four lumas, half-res depths, three layer floats; the
       // work sets' stencil bytes, memberships and queue entries.
-      .bytesPerPixel = 7 * sizeof(glm::vec4) + 3 * sizeof(glm::vec2) + 8 * sizeof(float) + 4 + 3 * sizeof(std::uint32_t),
+      .bytesPerPixel =
+          7 * sizeof(glm::vec4) + 3 * sizeof(glm::vec2) + 8 * sizeof(float) + 4 + 3 * sizeof(std::uint32_t),
       .layerBytesPerPixel = (2 + 1 + 1) * sizeof(float),
       .temporal = true,
       .jitter = "t2x",

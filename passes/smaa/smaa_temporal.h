@@ -36,12 +36,15 @@
 // through RG16F; the resolve negates it (SMAAResolvePS) and fetches the previous frame at
 // uv - v_uv, i.e. at pixel p - v_px.
 //
-// Frame 0 (or a frame after a size change): no previous frame. The demo never clears its two
-// targets; when T2x is switched on it renders one extra frame to "refill the temporal buffer"
-// before showing one (Demo.cpp onGUIEvent). A sequence has no frame before its first, so the
-// previous target is this frame's own output, as the CMAA2 sample's SMAA wrapper does when its
-// history is not valid (GameTechDev/CMAA2 vaSMAAWrapper: previous = current): frame 0's output is
-// its SMAA 1x/S2x output (with reprojection, up to the resolve's fetch at p - v of the same image).
+// Frame 0 (or a frame after a size change): no previous frame. The demo creates its two targets
+// without initial data and never clears them: its very first T2x frame after start-up resolves
+// against a never-written target (undefined in D3D10; zero-filled memory in practice, a half-dark
+// first frame), and when T2x or SMAA is switched on it renders one extra frame to "refill the
+// temporal buffer" before showing one (Demo.cpp onGUIEvent). We follow the refill's intent, not
+// the undefined read: a sequence has no frame before its first, so the previous target is this
+// frame's own output, as the CMAA2 sample's SMAA wrapper does when its history is not valid
+// (GameTechDev/CMAA2 vaSMAAWrapper: previous = current). Frame 0's output is its SMAA 1x/S2x
+// output (with reprojection, up to the resolve's fetch at p - v of the same image).
 //
 // Settings: SMAA's (smaa.h, luma edges), `reprojection` (0/1; on by default as the demo's
 // "Temporal Reprojection" checkbox; SMAA.hlsl's macro default is 0) and
