@@ -25,7 +25,8 @@
 // aa-facts §1.8; the second sample's neighbourhood blending blends onto the first's with factor
 // 0.5; dispatches smaa-s2x/s<k>/...). Presets low, medium,
 // high, ultra are SMAA.hlsl's (aa-facts §1.2); the defaults are HIGH's. Layers: "edges" (R, G)
-// and "weights" (R, G, B, A), the 8-bit texels as k / 255.
+// and "weights" (R, G, B, A), the 8-bit texels as k / 255. The temporal modes on these runs are
+// separate passes: SMAA T2x and 4x (smaa_temporal.h), SMAA 1TX (smaa_1tx.h).
 
 #include <memory>
 #include <string_view>
