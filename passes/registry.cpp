@@ -6,10 +6,13 @@
 #include "passes/copy/copy.h"
 #include "passes/demo/demo.h"
 #include "passes/filmic_smaa/filmic_smaa.h"
+#include "passes/filmic_smaa/filmic_t2x.h"
 #include "passes/fxaa/fxaa.h"
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
 #include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
+#include "passes/smaa/smaa_1tx.h"
+#include "passes/smaa/smaa_temporal.h"
 
 namespace passes {
 
@@ -22,7 +25,11 @@ std::span<const RegisteredPass> AllPasses() {
       {smaa::Info<smaa::Variant::Depth>, smaa::Make<smaa::Variant::Depth>},
       {smaa::Info<smaa::Variant::LumaPredicated>, smaa::Make<smaa::Variant::LumaPredicated>},
       {smaa::Info<smaa::Variant::S2x>, smaa::Make<smaa::Variant::S2x>},
+      {smaa::T2xInfo, smaa::MakeT2x},
+      {smaa::FourXInfo, smaa::MakeFourX},
+      {smaa::OneTxInfo, smaa::MakeOneTx},
       {filmic_smaa::Info, filmic_smaa::Make},
+      {filmic_smaa::FilmicT2xInfo, filmic_smaa::MakeFilmicT2x},
       {fxaa::Info, fxaa::Make},
       {fxaa_miniengine::Info, fxaa_miniengine::Make},
       {mlaa::Info<mlaa::Thresholding::Relative>, mlaa::Make<mlaa::Thresholding::Relative>},

@@ -14,6 +14,8 @@ namespace {
 
 const DispatchNames kDispatchNames{"smaa/edge-detection", "smaa/blending-weights", "smaa/neighbourhood-blending"};
 
+}  // namespace
+
 Config ConfigOf(Variant variant, const PassSettings& settings) {
   Config config;
   config.edges = variant == Variant::Colour ? EdgeMode::Colour
@@ -33,8 +35,6 @@ Config ConfigOf(Variant variant, const PassSettings& settings) {
   }
   return config;
 }
-
-}  // namespace
 
 std::unique_ptr<Pass> MakeS2x(const PassInfo& info, const Config& config);
 
@@ -68,6 +68,8 @@ class SmaaPass final : public Pass {
   std::optional<sim::Texture2D<glm::vec4>> colour_, blended_;
 };
 
+}  // namespace
+
 std::vector<SettingInfo> SettingsOf(Variant variant) {
   std::vector<SettingInfo> settings =
       SearchSettings(variant == Variant::Depth ? "SMAA_THRESHOLD; depth edges use 0.1 x this (SMAA_DEPTH_THRESHOLD)"
@@ -88,6 +90,7 @@ std::vector<SettingInfo> SettingsOf(Variant variant) {
   return settings;
 }
 
+namespace {
 
 struct VariantNames {
   std::string_view name, description;

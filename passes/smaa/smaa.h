@@ -25,13 +25,15 @@
 // aa-facts §1.8; the second sample's neighbourhood blending blends onto the first's with factor
 // 0.5; dispatches smaa-s2x/s<k>/...). Presets low, medium,
 // high, ultra are SMAA.hlsl's (aa-facts §1.2); the defaults are HIGH's. Layers: "edges" (R, G)
-// and "weights" (R, G, B, A), the 8-bit texels as k / 255.
+// and "weights" (R, G, B, A), the 8-bit texels as k / 255. The temporal modes on these runs are
+// separate passes: SMAA T2x and 4x (smaa_temporal.h), SMAA 1TX (smaa_1tx.h).
 
 #include <memory>
 #include <string_view>
 #include <vector>
 
 #include "passes/pass.h"
+#include "passes/smaa/smaa_kernels.h"
 
 namespace passes::smaa {
 
@@ -42,6 +44,11 @@ enum class Variant { Luma, Colour, Depth, LumaPredicated, S2x };
 // SMAA's searches; `thresholdDoc` says what the threshold means to that pass.
 std::vector<SettingInfo> SearchSettings(std::string_view thresholdDoc);
 std::vector<Preset> SearchPresets();
+
+// A variant's settings (SearchSettings plus its own) and the kernels' configuration from them,
+// for the passes built on a variant (T2x and 4x on luma SMAA).
+std::vector<SettingInfo> SettingsOf(Variant variant);
+Config ConfigOf(Variant variant, const PassSettings& settings);
 
 template <Variant V>
 const PassInfo& Info();

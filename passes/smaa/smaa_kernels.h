@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -182,12 +183,19 @@ namespace passes::smaa {
 
 // ---- Pass 3: neighbourhood blending (SMAANeighborhoodBlendingPS, aa-facts §1.5) ----
 
+// SMAA_REPROJECTION's velocity length in alpha, a = sqrt(5 |v|) with v in UV units (aa-facts
+// §1.8): the temporal resolve compares the current and previous frames' a.
+inline float PackedVelocityLength(glm::vec2 velocity) { return std::sqrt(5.0f * glm::length(velocity)); }
+
 // Reads the weights (RGBA8) and the colour through an sRGB view (linear values, filtered in float
-// after decoding); blends along one axis only, with two bilinear fetches.
+// after decoding); blends along one axis only, with two bilinear fetches. With a velocity view
+// (SMAA_REPROJECTION, T2x/4x) the velocity is blended with the colour's weights at the colour's
+// coordinates and its packed length replaces alpha.
 class NeighbourhoodBlending {
  public:
-  NeighbourhoodBlending(const Metrics& metrics, sim::TextureView<glm::vec4> colour, sim::TextureView<glm::vec4> weights)
-      : metrics_(metrics), colour_(std::move(colour)), weights_(std::move(weights)) {}
+  NeighbourhoodBlending(const Metrics& metrics, sim::TextureView<glm::vec4> colour, sim::TextureView<glm::vec4> weights,
+                        std::optional<sim::TextureView<glm::vec2>> velocity = std::nullopt)
+      : metrics_(metrics), colour_(std::move(colour)), weights_(std::move(weights)), velocity_(std::move(velocity)) {}
 
   glm::vec4 operator()(const sim::LaneBase& lane, int x, int y) const {
     const glm::vec2 uv = metrics_.Texcoord(x, y);
@@ -198,7 +206,11 @@ class NeighbourhoodBlending {
     const glm::vec4 here = weights_.SampleBilinear(lane, uv);
     const glm::vec4 a(weights_.SampleBilinear(lane, {offset.x, offset.y}).w,
                       weights_.SampleBilinear(lane, {offset.z, offset.w}).y, here.z, here.x);
-    if (a.x + a.y + a.z + a.w < 1e-5f) return colour_.SampleBilinear(lane, uv);
+    if (a.x + a.y + a.z + a.w < 1e-5f) {
+      glm::vec4 colour = colour_.SampleBilinear(lane, uv);
+      if (velocity_) colour.a = PackedVelocityLength(velocity_->SampleBilinear(lane, uv));
+      return colour;
+    }
     const bool horizontal = std::max(a.x, a.z) > std::max(a.y, a.w);
     const glm::vec4 blendingOffset = horizontal ? glm::vec4(a.x, 0.0f, a.z, 0.0f) : glm::vec4(0.0f, a.y, 0.0f, a.w);
     glm::vec2 blendingWeight = horizontal ? glm::vec2(a.x, a.z) : glm::vec2(a.y, a.w);
@@ -206,6 +218,11 @@ class NeighbourhoodBlending {
     const glm::vec4 coord = Mad(blendingOffset, glm::vec4(pixel, -pixel), glm::vec4(uv, uv));
     glm::vec4 colour = blendingWeight.x * colour_.SampleBilinear(lane, {coord.x, coord.y});
     colour += blendingWeight.y * colour_.SampleBilinear(lane, {coord.z, coord.w});
+    if (velocity_) {
+      glm::vec2 velocity = blendingWeight.x * velocity_->SampleBilinear(lane, {coord.x, coord.y});
+      velocity += blendingWeight.y * velocity_->SampleBilinear(lane, {coord.z, coord.w});
+      colour.a = PackedVelocityLength(velocity);
+    }
     return colour;
   }
 
@@ -213,6 +230,7 @@ class NeighbourhoodBlending {
   Metrics metrics_;
   sim::TextureView<glm::vec4> colour_;
   sim::TextureView<glm::vec4> weights_;
+  std::optional<sim::TextureView<glm::vec2>> velocity_;
 };
 
 }  // namespace passes::smaa

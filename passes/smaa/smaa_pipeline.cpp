@@ -30,6 +30,10 @@ constexpr sim::KernelInfo kBlend{
     .vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 36,
     .source = "hand count of SMAANeighborhoodBlendingPS: 3 weight fetches' addresses (4), the sum and branch (5), "
               "the axis choice and offsets (10), the normalise (4), 2 fetches and the weighted sum (13)"};
+constexpr sim::KernelInfo kBlendReprojection{
+    .vgprs = 20, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 46,
+    .source = "kBlend's 36 plus SMAA_REPROJECTION's velocity: 2 fetches' weighted sum (4), length (4), the "
+              "sqrt(5 |v|) (2)"};
 
 }  // namespace
 
@@ -37,7 +41,8 @@ Smaa1x::Smaa1x(std::string_view pass, const Config& config, DispatchNames names)
     : config_(config), names_(std::move(names)), tables_(LookupTables::Make()), workSet_(pass) {}
 
 Smaa1x::Frame Smaa1x::Run(sim::Machine& machine, Strategy strategy, const sim::Texture2D<glm::vec4>& colour,
-                          const sim::Texture2D<float>* depth, sim::Texture2D<glm::vec4>& target, Blend blend) {
+                          const sim::Texture2D<float>* depth, sim::Texture2D<glm::vec4>& target, Blend blend,
+                          const sim::Texture2D<glm::vec2>* velocity) {
   if (!targets_ || targets_->edges.Width() != colour.Width() || targets_->edges.Height() != colour.Height()) {
     targets_.emplace(colour.Width(), colour.Height());
   } else {
@@ -45,7 +50,7 @@ Smaa1x::Frame Smaa1x::Run(sim::Machine& machine, Strategy strategy, const sim::T
     targets_->weights.Fill(glm::vec4(0.0f));
   }
   const WorkSetShape workSet = EdgesAndWeights(machine, strategy, colour, depth, *targets_);
-  NeighbourhoodBlend(machine, colour, *targets_, target, blend);
+  NeighbourhoodBlend(machine, colour, *targets_, target, blend, velocity);
   return {*targets_, workSet};
 }
 
@@ -80,10 +85,13 @@ WorkSetShape Smaa1x::EdgesAndWeights(sim::Machine& machine, Strategy strategy,
 }
 
 void Smaa1x::NeighbourhoodBlend(sim::Machine& machine, const sim::Texture2D<glm::vec4>& colour,
-                                const Intermediates& targets, sim::Texture2D<glm::vec4>& target, Blend blend) {
+                                const Intermediates& targets, sim::Texture2D<glm::vec4>& target, Blend blend,
+                                const sim::Texture2D<glm::vec2>* velocity) {
   const Metrics metrics = Metrics::Of(colour.Width(), colour.Height());
-  sim::Dispatch d(names_.blending, kBlend);
-  const NeighbourhoodBlending kernel(metrics, d.Read(colour), d.Read(targets.weights));
+  sim::Dispatch d(names_.blending, velocity != nullptr ? kBlendReprojection : kBlend);
+  std::optional<sim::TextureView<glm::vec2>> velocityView;
+  if (velocity != nullptr) velocityView = d.Read(*velocity);
+  const NeighbourhoodBlending kernel(metrics, d.Read(colour), d.Read(targets.weights), velocityView);
   const sim::RwTextureView<glm::vec4> out = d.ReadWrite(target);
   const sim::FullScreenCall call{.width = colour.Width(), .height = colour.Height()};
   if (blend == Blend::Replace) {

@@ -31,14 +31,20 @@ class Smaa1x {
   };
   // colour: RGBA8 sRGB; depth: the depth edges' or predication's buffer (may be null when the
   // configuration reads neither); target: RGBA8 sRGB, written by neighbourhood blending.
+  // velocity (T2x/4x with SMAA_REPROJECTION, else null): RG16F in UV units, motion-blur
+  // convention (current - previous, v down); neighbourhood blending packs its length in alpha.
   Frame Run(sim::Machine& machine, Strategy strategy, const sim::Texture2D<glm::vec4>& colour,
-            const sim::Texture2D<float>* depth, sim::Texture2D<glm::vec4>& target, Blend blend);
+            const sim::Texture2D<float>* depth, sim::Texture2D<glm::vec4>& target, Blend blend,
+            const sim::Texture2D<glm::vec2>* velocity = nullptr);
+  // T2x and 4x change the AreaTex subsample indices every frame (aa-facts §1.8).
+  void SetSubsampleIndices(glm::vec4 indices) { config_.subsampleIndices = indices; }
 
  private:
   WorkSetShape EdgesAndWeights(sim::Machine& machine, Strategy strategy, const sim::Texture2D<glm::vec4>& colour,
                                const sim::Texture2D<float>* depth, Intermediates& targets);
   void NeighbourhoodBlend(sim::Machine& machine, const sim::Texture2D<glm::vec4>& colour,
-                          const Intermediates& targets, sim::Texture2D<glm::vec4>& target, Blend blend);
+                          const Intermediates& targets, sim::Texture2D<glm::vec4>& target, Blend blend,
+                          const sim::Texture2D<glm::vec2>* velocity);
 
   Config config_;
   DispatchNames names_;
