@@ -10,6 +10,7 @@
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
 #include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
+#include "passes/taa_ue4/taa_ue4.h"
 
 namespace passes {
 
@@ -29,6 +30,7 @@ std::span<const RegisteredPass> AllPasses() {
       {mlaa::Info<mlaa::Thresholding::Absolute>, mlaa::Make<mlaa::Thresholding::Absolute>},
       {mlaa::Info<mlaa::Thresholding::Predicated>, mlaa::Make<mlaa::Thresholding::Predicated>},
       {cmaa2::Info, cmaa2::Make},
+      {taa_ue4::Info, taa_ue4::Make},
   };
   return kPasses;
 }
