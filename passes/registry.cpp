@@ -11,6 +11,7 @@
 #include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
 #include "passes/taa_ue4/taa_ue4.h"
+#include "passes/tscmaa/tscmaa.h"
 
 namespace passes {
 
@@ -31,6 +32,7 @@ std::span<const RegisteredPass> AllPasses() {
       {mlaa::Info<mlaa::Thresholding::Predicated>, mlaa::Make<mlaa::Thresholding::Predicated>},
       {cmaa2::Info, cmaa2::Make},
       {taa_ue4::Info, taa_ue4::Make},
+      {tscmaa::Info, tscmaa::Make},
   };
   return kPasses;
 }
