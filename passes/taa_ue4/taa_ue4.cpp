@@ -102,6 +102,91 @@ Constrained Constrain(const Neighbourhood& rgb, const glm::vec3& history, Constr
   return {sim::YCoCgToRgb(clipped), shaped.min.x, shaped.max.x, true};
 }
 
+// The resolve kernel: its bindings and the diagram's steps per pixel.
+struct Resolve {
+  sim::TextureView<glm::vec4> colour, history;
+  std::optional<sim::TextureView<float>> depth;
+  std::optional<sim::TextureView<glm::vec2>> velocity;
+  std::optional<sim::TextureView<std::uint32_t>> objectId;  // bound when a responsive object is set
+  sim::RwTextureView<glm::vec4> out;
+  sim::CounterView clipped, offscreen, responsive;
+  Config config;
+  glm::vec2 jitter;
+  int width, height;
+  bool useHistory;
+
+  void operator()(const sim::PixelLane& lane) const {
+    const int x = lane.x, y = lane.y;
+    Neighbourhood samples;
+    const glm::vec2 v = LoadNeighbourhood(lane, samples);
+    const glm::vec3 current = config.reconstruction ? Reconstruct(samples) : samples[0];
+    const glm::vec2 uv = temporal::HistoryUv(x, y, v, width, height);
+    const bool onScreen = uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f;
+    if (useHistory && !onScreen) offscreen.Add(lane);
+    if (!useHistory || !onScreen) {
+      out.Store(lane, x, y, glm::vec4(current, 1.0f));
+      return;
+    }
+    const glm::vec3 reprojected(temporal::SampleHistoryFilmic(history, lane, uv, temporal::kCatmullRom));
+    const Constrained constrained = Constrain(samples, reprojected, config.constraint);
+    if (constrained.moved) clipped.Add(lane);
+    const float alpha = Alpha(lane, constrained);
+    const glm::vec3 h = constrained.history;
+    const float beta = config.lumaWeight ? CurrentShare(alpha, LumaWeight(current), LumaWeight(h)) : alpha;
+    out.Store(lane, x, y, glm::vec4(h + (current - h) * beta, 1.0f));
+  }
+
+  // Steps 1-2: the 3x3 samples (addresses clamped to the screen, as a clamp sampler's) and the
+  // velocity of the front-most of them.
+  glm::vec2 LoadNeighbourhood(const sim::PixelLane& lane, Neighbourhood& samples) const {
+    glm::ivec2 front(lane.x, lane.y);
+    float frontDepth = 0.0f;
+    for (std::size_t i = 0; i < temporal::kOffsets3x3.size(); ++i) {
+      const glm::ivec2 p(std::clamp(lane.x + temporal::kOffsets3x3[i].x, 0, width - 1),
+                         std::clamp(lane.y + temporal::kOffsets3x3[i].y, 0, height - 1));
+      samples[i] = glm::vec3(colour.Load(lane, p.x, p.y));
+      if (!depth) continue;
+      const float z = depth->Load(lane, p.x, p.y);
+      // Strictly nearer only, so ties keep the earlier offset (the centre first).
+      if (i == 0 || z < frontDepth) {
+        frontDepth = z;
+        front = p;
+      }
+    }
+    return velocity ? velocity->Load(lane, front.x, front.y) : glm::vec2(0.0f);
+  }
+
+  // Step 3: the Gaussian-weighted (and luma-weighted) mean of the jittered samples around this
+  // pixel's centre.
+  glm::vec3 Reconstruct(const Neighbourhood& samples) const {
+    glm::vec3 sum(0.0f);
+    float weights = 0.0f;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const float w = ReconstructionWeight(glm::vec2(temporal::kOffsets3x3[i]) + jitter) *
+                      (config.lumaWeight ? LumaWeight(samples[i]) : 1.0f);
+      sum += samples[i] * w;
+      weights += w;
+    }
+    return sum / weights;
+  }
+
+  // Step 6's current weight: responsive pixels take theirs, the rest the anti-flicker's.
+  float Alpha(const sim::PixelLane& lane, const Constrained& constrained) const {
+    if (objectId && objectId->Load(lane, lane.x, lane.y) == static_cast<std::uint32_t>(config.responsiveObject)) {
+      responsive.Add(lane);
+      return config.responsiveAlpha;
+    }
+    return AntiFlickerAlpha(config.alpha, sim::RgbToYCoCg(constrained.history).x, constrained.yMin, constrained.yMax,
+                            config.antiFlicker);
+  }
+};
+
+template <typename T>
+std::optional<sim::TextureView<T>> ReadIf(sim::Dispatch& d, const sim::Texture2D<T>* texture) {
+  if (texture == nullptr) return std::nullopt;
+  return d.Read(*texture);
+}
+
 class TaaUe4Pass final : public Pass {
  public:
   explicit TaaUe4Pass(const Config& config) : config_(config) {}
@@ -113,7 +198,7 @@ class TaaUe4Pass final : public Pass {
  private:
   Config config_;
   std::array<std::optional<sim::Texture2D<glm::vec4>>, 2> history_;
-  int current_ = 0;        // the history target this frame writes
+  int current_ = 0;          // the history target this frame writes
   bool hasHistory_ = false;  // the other target holds the previous frame's output
 };
 
@@ -121,86 +206,27 @@ PassOutput TaaUe4Pass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
   const int width = frame.Width(), height = frame.Height();
   const int previous = 1 - current_;
   const bool resized = !history_[previous] || history_[previous]->Width() != width || history_[previous]->Height() != height;
-  const bool useHistory = hasHistory_ && !resized && frame.frameIndex != 0;
   sim::Texture2D<glm::vec4>& read =
       FrameTexture(history_[previous], "taa-ue4/history-" + std::to_string(previous), width, height, sim::Format::RGBA16Float);
   sim::Texture2D<glm::vec4>& write =
       FrameTexture(history_[current_], "taa-ue4/history-" + std::to_string(current_), width, height, sim::Format::RGBA16Float);
 
   sim::Dispatch d(std::string(kResolveDispatch), kResolveKernel);
-  const sim::TextureView<glm::vec4> colour = d.Read(*frame.colour);
-  std::optional<sim::TextureView<float>> depth;
-  if (frame.depth) depth.emplace(d.Read(*frame.depth));
-  std::optional<sim::TextureView<glm::vec2>> velocity;
-  if (frame.velocity) velocity.emplace(d.Read(*frame.velocity));
-  std::optional<sim::TextureView<std::uint32_t>> objectId;
-  if (frame.objectId && config_.responsiveObject >= 0) objectId.emplace(d.Read(*frame.objectId));
-  const sim::TextureView<glm::vec4> history = d.Read(read);
-  const sim::RwTextureView<glm::vec4> out = d.ReadWrite(write);
-  const sim::CounterView clipped = d.Counter("taa-ue4/history_clipped");
-  const sim::CounterView offscreen = d.Counter("taa-ue4/history_offscreen");
-  const sim::CounterView responsive = d.Counter("taa-ue4/responsive_pixels");
-  const Config config = config_;
-  const glm::vec2 jitter = frame.jitter;
-
-  machine.FullScreen(d, {.width = width, .height = height}, [&](sim::PixelLane& lane) {
-    const int x = lane.x, y = lane.y;
-    const auto at = [&](glm::ivec2 o) { return glm::ivec2(std::clamp(x + o.x, 0, width - 1), std::clamp(y + o.y, 0, height - 1)); };
-    Neighbourhood samples;
-    glm::ivec2 front(x, y);
-    float frontDepth = 0.0f;
-    for (std::size_t i = 0; i < temporal::kOffsets3x3.size(); ++i) {
-      const glm::ivec2 p = at(temporal::kOffsets3x3[i]);
-      samples[i] = glm::vec3(colour.Load(lane, p.x, p.y));
-      if (depth) {
-        const float z = depth->Load(lane, p.x, p.y);
-        // Strictly nearer only, so ties keep the earlier offset (the centre first).
-        if (i == 0 || z < frontDepth) {
-          frontDepth = z;
-          front = p;
-        }
-      }
-    }
-    const glm::vec2 v = velocity ? velocity->Load(lane, front.x, front.y) : glm::vec2(0.0f);
-
-    glm::vec3 current = samples[0];
-    if (config.reconstruction) {
-      glm::vec3 sum(0.0f);
-      float weights = 0.0f;
-      for (std::size_t i = 0; i < samples.size(); ++i) {
-        const float w = ReconstructionWeight(glm::vec2(temporal::kOffsets3x3[i]) + jitter) *
-                        (config.lumaWeight ? LumaWeight(samples[i]) : 1.0f);
-        sum += samples[i] * w;
-        weights += w;
-      }
-      current = sum / weights;
-    }
-
-    const glm::vec2 uv = temporal::HistoryUv(x, y, v, width, height);
-    const bool onScreen = uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f;
-    if (useHistory && !onScreen) offscreen.Add(lane);
-    if (!useHistory || !onScreen) {
-      out.Store(lane, x, y, glm::vec4(current, 1.0f));
-      return;
-    }
-    const glm::vec3 reprojected(temporal::SampleHistoryFilmic(history, lane, uv, temporal::kCatmullRom));
-    const Constrained constrained = Constrain(samples, reprojected, config.constraint);
-    if (constrained.moved) clipped.Add(lane);
-
-    bool isResponsive = false;
-    if (objectId) isResponsive = objectId->Load(lane, x, y) == static_cast<std::uint32_t>(config.responsiveObject);
-    float alpha = config.alpha;
-    if (isResponsive) {
-      responsive.Add(lane);
-      alpha = config.responsiveAlpha;
-    } else {
-      alpha = AntiFlickerAlpha(alpha, sim::RgbToYCoCg(constrained.history).x, constrained.yMin, constrained.yMax,
-                               config.antiFlicker);
-    }
-    const glm::vec3 h = constrained.history;
-    const float beta = config.lumaWeight ? CurrentShare(alpha, LumaWeight(current), LumaWeight(h)) : alpha;
-    out.Store(lane, x, y, glm::vec4(h + (current - h) * beta, 1.0f));
-  });
+  const Resolve resolve{.colour = d.Read(*frame.colour),
+                        .history = d.Read(read),
+                        .depth = ReadIf(d, frame.depth),
+                        .velocity = ReadIf(d, frame.velocity),
+                        .objectId = config_.responsiveObject >= 0 ? ReadIf(d, frame.objectId) : std::nullopt,
+                        .out = d.ReadWrite(write),
+                        .clipped = d.Counter("taa-ue4/history_clipped"),
+                        .offscreen = d.Counter("taa-ue4/history_offscreen"),
+                        .responsive = d.Counter("taa-ue4/responsive_pixels"),
+                        .config = config_,
+                        .jitter = frame.jitter,
+                        .width = width,
+                        .height = height,
+                        .useHistory = hasHistory_ && !resized && frame.frameIndex != 0};
+  machine.FullScreen(d, {.width = width, .height = height}, resolve);
 
   hasHistory_ = true;
   current_ = previous;
