@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "passes/cmaa2/cmaa2.h"
@@ -74,6 +75,49 @@ const PassLayer& LayerNamed(const PassOutput& output, std::string_view name) {
   throw std::logic_error("cmaa2 returned no layer " + std::string(name));
 }
 
+// The TAA on one candidate (the diagram's tscmaa/taa).
+struct TaaKernel {
+  sim::TextureView<glm::vec4> current, history;  // CMAA2's colour, the previous output (sRGB views)
+  std::optional<sim::TextureView<glm::vec2>> velocity;
+  sim::RwTextureView<glm::vec4> out;
+  sim::CounterView clipped, offscreen;
+  float blend, gamma;
+  int width, height;
+  bool useHistory;
+
+  template <typename Lane>
+  void operator()(const Lane& lane, int x, int y) const {
+    // No history yet: the CMAA pixel, already copied.
+    if (!useHistory) return;
+    const glm::vec2 v = velocity ? velocity->Load(lane, x, y) : glm::vec2(0.0f);
+    const glm::vec2 uv = temporal::HistoryUv(x, y, v, width, height);
+    if (uv.x < 0.0f || uv.x > 1.0f || uv.y < 0.0f || uv.y > 1.0f) {
+      offscreen.Add(lane);
+      return;
+    }
+    const glm::vec3 c(current.Load(lane, x, y));
+    const glm::vec3 h = Clipped(lane, x, y, c, glm::vec3(temporal::SampleHistoryIntel(history, lane, uv)));
+    out.Store(lane, x, y, glm::vec4(c + (h - c) * blend, 1.0f));
+  }
+
+  // The history clipped to the variance box of CMAA2's 3x3 in YCoCg, along the segment towards the
+  // current colour (Intel's ray towards the current colour, aa-facts §5.3), the current colour
+  // brought into the box first so the clip lands inside it.
+  template <typename Lane>
+  glm::vec3 Clipped(const Lane& lane, int x, int y, const glm::vec3& c, const glm::vec3& h) const {
+    const temporal::Moments moments = temporal::MomentsOf(temporal::Neighbourhood::Box3x3, [&](glm::ivec2 o) {
+      const int nx = std::clamp(x + o.x, 0, width - 1), ny = std::clamp(y + o.y, 0, height - 1);
+      return sim::RgbToYCoCg(glm::vec3(current.Load(lane, nx, ny)));
+    });
+    const temporal::ColourBox box = temporal::VarianceBox(moments, gamma);
+    const glm::vec3 hy = sim::RgbToYCoCg(h);
+    const glm::vec3 clippedY = temporal::ClipTowards(hy, box, temporal::ClampToBox(sim::RgbToYCoCg(c), box));
+    if (clippedY == hy) return h;
+    clipped.Add(lane);
+    return sim::YCoCgToRgb(clippedY);
+  }
+};
+
 class TscmaaPass final : public Pass {
  public:
   explicit TscmaaPass(const Config& config) : config_(config), cmaa2_(MakeCmaa2(config)), workSet_(tscmaa::Info().name) {}
@@ -84,6 +128,9 @@ class TscmaaPass final : public Pass {
 
  private:
   void CopyHistory(sim::Machine& machine, const sim::Texture2D<glm::vec4>& from, sim::Texture2D<glm::vec4>& to) const;
+  // CMAA2's output codes and edge bits in this pass's targets (host side, see the diagram).
+  std::pair<const sim::Texture2D<glm::vec4>&, const sim::Texture2D<std::uint32_t>&> StoreCmaaOutputs(
+      const PassOutput& cmaa, int width, int height);
 
   Config config_;
   std::unique_ptr<Pass> cmaa2_;
@@ -110,18 +157,21 @@ void TscmaaPass::CopyHistory(sim::Machine& machine, const sim::Texture2D<glm::ve
                   });
 }
 
+std::pair<const sim::Texture2D<glm::vec4>&, const sim::Texture2D<std::uint32_t>&> TscmaaPass::StoreCmaaOutputs(
+    const PassOutput& cmaa, int width, int height) {
+  sim::Texture2D<glm::vec4>& colour = FrameTexture(cmaaColour_, "tscmaa/cmaa-colour", width, height, sim::Format::RGBA8Srgb);
+  StoreSrgb8(cmaa.colour, colour);
+  sim::Texture2D<std::uint32_t>& edges = FrameTexture(cmaaEdges_, "tscmaa/cmaa-edges", width, height, 1);
+  const std::vector<float>& bits = LayerNamed(cmaa, "edges").values;
+  for (std::size_t i = 0; i < bits.size(); ++i) edges.Texels()[i] = static_cast<std::uint32_t>(bits[i]);
+  return {colour, edges};
+}
+
 PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) {
   const int width = frame.Width(), height = frame.Height();
   PassOutput cmaa = cmaa2_->Run(machine, frame, strategy);
 
-  sim::Texture2D<glm::vec4>& colour = FrameTexture(cmaaColour_, "tscmaa/cmaa-colour", width, height, sim::Format::RGBA8Srgb);
-  StoreSrgb8(cmaa.colour, colour);
-  sim::Texture2D<std::uint32_t>& edges = FrameTexture(cmaaEdges_, "tscmaa/cmaa-edges", width, height, 1);
-  const PassLayer& edgeLayer = LayerNamed(cmaa, "edges");
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) edges.At(x, y) = static_cast<std::uint32_t>(
-        edgeLayer.values[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]);
-  }
+  const auto [colour, edges] = StoreCmaaOutputs(cmaa, width, height);
 
   const int previous = 1 - current_;
   const bool resized = !history_[previous] || history_[previous]->Width() != width || history_[previous]->Height() != height;
@@ -140,40 +190,17 @@ PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
     };
   };
   auto makeTaa = [&](sim::Dispatch& d) {
-    const sim::TextureView<glm::vec4> current = d.Read(colour);
-    const sim::TextureView<glm::vec4> history = d.Read(read);
-    std::optional<sim::TextureView<glm::vec2>> velocity;
-    if (frame.velocity) velocity.emplace(d.Read(*frame.velocity));
-    const sim::RwTextureView<glm::vec4> out = d.ReadWrite(write);
-    const sim::CounterView clipped = d.Counter("tscmaa/history_clipped");
-    const sim::CounterView offscreen = d.Counter("tscmaa/history_offscreen");
-    const float blend = config_.blend, gamma = config_.gamma;
-    return [=](const auto& lane, int x, int y) {
-      // No history yet: the CMAA pixel, already copied.
-      if (!useHistory) return;
-      const glm::vec2 v = velocity ? velocity->Load(lane, x, y) : glm::vec2(0.0f);
-      const glm::vec2 uv = temporal::HistoryUv(x, y, v, width, height);
-      if (uv.x < 0.0f || uv.x > 1.0f || uv.y < 0.0f || uv.y > 1.0f) {
-        offscreen.Add(lane);
-        return;
-      }
-      const glm::vec3 c(current.Load(lane, x, y));
-      const temporal::Moments moments = temporal::MomentsOf(temporal::Neighbourhood::Box3x3, [&](glm::ivec2 o) {
-        const int nx = std::clamp(x + o.x, 0, width - 1), ny = std::clamp(y + o.y, 0, height - 1);
-        return sim::RgbToYCoCg(glm::vec3(current.Load(lane, nx, ny)));
-      });
-      const temporal::ColourBox box = temporal::VarianceBox(moments, gamma);
-      glm::vec3 h(temporal::SampleHistoryIntel(history, lane, uv));
-      const glm::vec3 hy = sim::RgbToYCoCg(h);
-      // Intel's TAA clips the segment from the history towards the current colour (aa-facts
-      // §5.3), brought into the box first so the clip always lands inside it.
-      const glm::vec3 clippedY = temporal::ClipTowards(hy, box, temporal::ClampToBox(sim::RgbToYCoCg(c), box));
-      if (clippedY != hy) {
-        clipped.Add(lane);
-        h = sim::YCoCgToRgb(clippedY);
-      }
-      out.Store(lane, x, y, glm::vec4(c + (h - c) * blend, 1.0f));
-    };
+    return TaaKernel{.current = d.Read(colour),
+                     .history = d.Read(read),
+                     .velocity = frame.velocity ? std::optional(d.Read(*frame.velocity)) : std::nullopt,
+                     .out = d.ReadWrite(write),
+                     .clipped = d.Counter("tscmaa/history_clipped"),
+                     .offscreen = d.Counter("tscmaa/history_offscreen"),
+                     .blend = config_.blend,
+                     .gamma = config_.gamma,
+                     .width = width,
+                     .height = height,
+                     .useHistory = useHistory};
   };
   PassOutput output;
   output.SetWorkSet(workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeTaa));
