@@ -206,10 +206,12 @@ PassOutput TaaUe4Pass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
   const int width = frame.Width(), height = frame.Height();
   const int previous = 1 - current_;
   const bool resized = !history_[previous] || history_[previous]->Width() != width || history_[previous]->Height() != height;
-  sim::Texture2D<glm::vec4>& read =
-      FrameTexture(history_[previous], "taa-ue4/history-" + std::to_string(previous), width, height, sim::Format::RGBA16Float);
-  sim::Texture2D<glm::vec4>& write =
-      FrameTexture(history_[current_], "taa-ue4/history-" + std::to_string(current_), width, height, sim::Format::RGBA16Float);
+  const auto target = [&](int i) -> sim::Texture2D<glm::vec4>& {
+    return FrameTexture(history_[static_cast<std::size_t>(i)], "taa-ue4/history-" + std::to_string(i), width, height,
+                        sim::Format::RGBA16Float);
+  };
+  sim::Texture2D<glm::vec4>& read = target(previous);
+  sim::Texture2D<glm::vec4>& write = target(current_);
 
   sim::Dispatch d(std::string(kResolveDispatch), kResolveKernel);
   const Resolve resolve{.colour = d.Read(*frame.colour),
@@ -230,7 +232,10 @@ PassOutput TaaUe4Pass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
 
   hasHistory_ = true;
   current_ = previous;
-  PassOutput output{.colour = {"taa-ue4/output", width, height, sim::Format::RGBA16Float}, .layers = {}, .workItems = 0, .workSet = {}};
+  PassOutput output{.colour = {"taa-ue4/output", width, height, sim::Format::RGBA16Float},
+                    .layers = {},
+                    .workItems = 0,
+                    .workSet = {}};
   std::ranges::copy(write.Texels(), output.colour.Texels().begin());
   output.SetWorkSet(ShapeOf(std::vector<std::uint8_t>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 1),
                             width, height));
