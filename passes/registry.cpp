@@ -13,6 +13,8 @@
 #include "passes/smaa/smaa.h"
 #include "passes/smaa/smaa_1tx.h"
 #include "passes/smaa/smaa_temporal.h"
+#include "passes/taa_ue4/taa_ue4.h"
+#include "passes/tscmaa/tscmaa.h"
 
 namespace passes {
 
@@ -36,6 +38,8 @@ std::span<const RegisteredPass> AllPasses() {
       {mlaa::Info<mlaa::Thresholding::Absolute>, mlaa::Make<mlaa::Thresholding::Absolute>},
       {mlaa::Info<mlaa::Thresholding::Predicated>, mlaa::Make<mlaa::Thresholding::Predicated>},
       {cmaa2::Info, cmaa2::Make},
+      {taa_ue4::Info, taa_ue4::Make},
+      {tscmaa::Info, tscmaa::Make},
   };
   return kPasses;
 }

@@ -286,10 +286,17 @@ TEST_F(CliFrameTest, EveryRegisteredPassRunsFromThePostOption) {
     }
     const CommandResult run = RunAasim(args, scratch_);
     ASSERT_EQ(run.exitCode, 0) << name << ": " << run.err;
-    EXPECT_NE(run.out.find("identical output: yes"), std::string::npos) << name << ": " << run.out;
+    // A pass declaring one strategy (a full-screen temporal resolve) has nothing to compare.
+    const std::vector<passes::Strategy>& strategies = passes::PassByName(name).info().strategies;
+    if (strategies.size() > 1) {
+      EXPECT_NE(run.out.find("identical output: yes"), std::string::npos) << name << ": " << run.out;
+    }
     const nlohmann::json json = nlohmann::json::parse(ReadText(scratch_ / name / "dispatches.json"));
     EXPECT_EQ(json["configuration"]["post"], name);
-    EXPECT_EQ(FilesIn(scratch_ / name / "post"), (std::vector<std::string>{"queue", "stencil"})) << name;
+    std::vector<std::string> expected;
+    for (const passes::Strategy strategy : strategies) expected.emplace_back(passes::StrategyName(strategy));
+    std::ranges::sort(expected);
+    EXPECT_EQ(FilesIn(scratch_ / name / "post"), expected) << name;
   }
   auto edgeLanes = [&](const std::string& spec) {
     std::vector<std::string> args = SmallRun(scratch_ / "threshold");

@@ -28,7 +28,8 @@ struct ColourBox {
 enum class Neighbourhood { Box3x3, Plus };
 
 // The neighbourhood's offsets, centre first.
-inline constexpr std::array<glm::ivec2, 9> kOffsets3x3{{{0, 0}, {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}}};
+inline constexpr std::array<glm::ivec2, 9> kOffsets3x3{
+    {{0, 0}, {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}}};
 inline constexpr std::array<glm::ivec2, 5> kOffsetsPlus{{{0, 0}, {0, -1}, {-1, 0}, {1, 0}, {0, 1}}};
 
 // Calls visit(offset) for each offset of the neighbourhood, centre first.
