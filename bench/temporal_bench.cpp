@@ -86,7 +86,7 @@ std::vector<FrameResult> RunPass(const passes::RegisteredPass& registered, const
       for (const sim::DispatchReport& report : machine.TakeReports()) {
         estimate += report.time.totalMicroseconds;
         for (const sim::ResourceTraffic& traffic : report.resources) {
-          if (traffic.name.starts_with("history")) history += traffic.bytesRead + traffic.bytesWritten;
+          if (passes::IsHistoryResource(traffic.name)) history += traffic.bytesRead + traffic.bytesWritten;
         }
       }
       result.historyBytes.push_back(history);

@@ -55,6 +55,14 @@ struct FrameInputs {
   int Height() const { return colour->Height(); }
 };
 
+// Whether a resource is history a temporal pass carries from frame to frame: the last component of
+// its name starts with "history" ("taa-ue4/history-0", "filmic-smaa-t2x/history-depth1"). The
+// sequence study's history bytes are the traffic on these (docs/temporal.md).
+inline bool IsHistoryResource(std::string_view name) {
+  const std::size_t slash = name.rfind('/');
+  return name.substr(slash == std::string_view::npos ? 0 : slash + 1).starts_with("history");
+}
+
 // Sample 0 of quad pixel 0, in pixels (+y down): FrameInputs::jitter.
 glm::vec2 PatternJitter(const raster::SamplePattern& pattern);
 // Every target of a rendered frame, its pattern and its index in its sequence.

@@ -35,7 +35,7 @@ SequenceFrameCounters Summarise(const std::vector<sim::DispatchReport>& reports)
     counters.dramBytes += report.DramBytes();
     counters.estimatedMicroseconds += report.time.totalMicroseconds;
     for (const sim::ResourceTraffic& traffic : report.resources) {
-      if (traffic.name.starts_with("history")) counters.historyBytes += traffic.bytesRead + traffic.bytesWritten;
+      if (passes::IsHistoryResource(traffic.name)) counters.historyBytes += traffic.bytesRead + traffic.bytesWritten;
     }
   }
   return counters;

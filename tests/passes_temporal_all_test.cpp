@@ -71,7 +71,7 @@ std::uint64_t HistoryBytes(const std::vector<sim::DispatchReport>& reports) {
   std::uint64_t bytes = 0;
   for (const sim::DispatchReport& report : reports) {
     for (const sim::ResourceTraffic& traffic : report.resources) {
-      if (traffic.name.starts_with("history")) bytes += traffic.bytesRead + traffic.bytesWritten;
+      if (passes::IsHistoryResource(traffic.name)) bytes += traffic.bytesRead + traffic.bytesWritten;
     }
   }
   return bytes;

@@ -128,12 +128,12 @@ class FilmicT2xPass final : public Pass {
     FrameTexture(resolved_, pass + "/resolved", width, height, sim::Format::RGBA8Srgb);
     for (std::size_t i = 0; i < 2; ++i) {
       const std::string n = std::to_string(i);
-      FrameTexture(morph_[i], pass + "/morph" + n, width, height, sim::Format::RGBA8Srgb);
-      FrameTexture(depth_[i], pass + "/depth" + n, halfWidth, halfHeight, sim::Format::R32Float);
-      FrameTexture(filtered_[i], pass + "/filtered" + n, width, height, sim::Format::RGBA16Float);
+      FrameTexture(morph_[i], pass + "/history-morph" + n, width, height, sim::Format::RGBA8Srgb);
+      FrameTexture(depth_[i], pass + "/history-depth" + n, halfWidth, halfHeight, sim::Format::R32Float);
+      FrameTexture(filtered_[i], pass + "/history-filtered" + n, width, height, sim::Format::RGBA16Float);
     }
     for (std::size_t i = 0; i < 4; ++i) {
-      FrameTexture(luma_[i], pass + "/luma" + std::to_string(i), width, height, sim::Format::R8Unorm);
+      FrameTexture(luma_[i], pass + "/history-luma" + std::to_string(i), width, height, sim::Format::R8Unorm);
     }
   }
 
