@@ -8,6 +8,7 @@
 #include "passes/filmic_smaa/filmic_smaa.h"
 #include "passes/fxaa/fxaa.h"
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
+#include "passes/hraa/tfq.h"
 #include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
 
@@ -29,6 +30,7 @@ std::span<const RegisteredPass> AllPasses() {
       {mlaa::Info<mlaa::Thresholding::Absolute>, mlaa::Make<mlaa::Thresholding::Absolute>},
       {mlaa::Info<mlaa::Thresholding::Predicated>, mlaa::Make<mlaa::Thresholding::Predicated>},
       {cmaa2::Info, cmaa2::Make},
+      {hraa::TfqInfo, hraa::MakeTfq},
   };
   return kPasses;
 }

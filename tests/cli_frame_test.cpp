@@ -286,10 +286,17 @@ TEST_F(CliFrameTest, EveryRegisteredPassRunsFromThePostOption) {
     }
     const CommandResult run = RunAasim(args, scratch_);
     ASSERT_EQ(run.exitCode, 0) << name << ": " << run.err;
-    EXPECT_NE(run.out.find("identical output: yes"), std::string::npos) << name << ": " << run.out;
+    // A full-screen pass without a work set may declare one strategy (docs/passes.md): nothing to compare.
+    const std::vector<passes::Strategy>& strategies = passes::PassByName(name).info().strategies;
+    if (strategies.size() > 1) {
+      EXPECT_NE(run.out.find("identical output: yes"), std::string::npos) << name << ": " << run.out;
+    }
     const nlohmann::json json = nlohmann::json::parse(ReadText(scratch_ / name / "dispatches.json"));
     EXPECT_EQ(json["configuration"]["post"], name);
-    EXPECT_EQ(FilesIn(scratch_ / name / "post"), (std::vector<std::string>{"queue", "stencil"})) << name;
+    std::vector<std::string> folders;
+    for (const passes::Strategy strategy : strategies) folders.emplace_back(passes::StrategyName(strategy));
+    std::sort(folders.begin(), folders.end());
+    EXPECT_EQ(FilesIn(scratch_ / name / "post"), folders) << name;
   }
   auto edgeLanes = [&](const std::string& spec) {
     std::vector<std::string> args = SmallRun(scratch_ / "threshold");
