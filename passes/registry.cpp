@@ -8,6 +8,7 @@
 #include "passes/filmic_smaa/filmic_smaa.h"
 #include "passes/fxaa/fxaa.h"
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
+#include "passes/hraa/hraa.h"
 #include "passes/hraa/tfq.h"
 #include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
@@ -31,6 +32,7 @@ std::span<const RegisteredPass> AllPasses() {
       {mlaa::Info<mlaa::Thresholding::Predicated>, mlaa::Make<mlaa::Thresholding::Predicated>},
       {cmaa2::Info, cmaa2::Make},
       {hraa::TfqInfo, hraa::MakeTfq},
+      {hraa::HraaInfo, hraa::MakeHraa},
   };
   return kPasses;
 }
