@@ -29,6 +29,7 @@
 #include "raster/coverage_mask.h"
 #include "raster/jitter_schedule.h"
 #include "raster_test_util.h"
+#include "sim/colour.h"
 #include "sim/formats.h"
 #include "sim/gpu_config.h"
 #include "sim_test_util.h"
@@ -314,6 +315,67 @@ TEST(PassesHraa, UnsharpMaskIsTheHalfPixelBoxSubtractedFromTheResolve) {
     }
     EXPECT_GT(overshoots, 0) << "the edges must be sharpened";
   }
+}
+
+// ---- the acceptance metric ------------------------------------------------------------------
+
+// The history weight of hraa.h, recomputed on the host from the stored images: with no motion and
+// bilinear resampling frame 1's history is frame 0's colour (float16), its window frame 1's 3x3.
+TEST(PassesHraa, AcceptanceMetricWeighsTheHistoryByItsDistanceFromTheFreshWindow) {
+  const int w = 20, h = 14;
+  raster::testing::Random rng(7);
+  std::vector<glm::vec3> first, second;
+  for (int i = 0; i < w * h; ++i) {
+    first.emplace_back(rng.Uniform(0, 1), rng.Uniform(0, 1), rng.Uniform(0, 1));
+    // A third of the pixels keep their colour, the others move a little or a lot.
+    const double step = i % 3 == 0 ? 0.0 : i % 3 == 1 ? 0.05 : 0.6;
+    second.push_back(glm::clamp(first.back() + glm::vec3(static_cast<float>(rng.Uniform(-step, step))), 0.0f, 1.0f));
+  }
+  const auto frame = [&](int k, const std::vector<glm::vec3>& colours) {
+    Frame f{{"colour", w, h, 16}, {"velocity", w, h, 8}, nullptr, k};
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) f.colour.At(x, y) = glm::vec4(colours[static_cast<std::size_t>(y * w + x)], 1.0f);
+    }
+    f.velocity.Fill(glm::vec2(0.0f));
+    return f;
+  };
+  sim::Machine machine = MakeMachine();
+  const std::unique_ptr<Pass> pass = MakePass("hraa:tfq=0,resample=0,feedback_mean=0.7,feedback_bound=0.9,falloff=3");
+  pass->Run(machine, frame(0, first).Inputs(), Strategy::StencilCulled);
+  const PassOutput output = pass->Run(machine, frame(1, second).Inputs(), Strategy::StencilCulled);
+  const PassLayer& feedback = testing::LayerNamed(output, "feedback");
+  const auto stored = [&](const std::vector<glm::vec3>& colours, int x, int y) {
+    return Stored(colours[static_cast<std::size_t>(std::clamp(y, 0, h - 1) * w + std::clamp(x, 0, w - 1))]);
+  };
+  int inside = 0, outside = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const glm::vec3 history(sim::Quantize(sim::Format::RGBA16Float, glm::vec4(stored(first, x, y), 1.0f)));
+      glm::vec3 mean(0.0f), lo(1e9f), hi(-1e9f);
+      for (int j = -1; j <= 1; ++j) {
+        for (int i = -1; i <= 1; ++i) {
+          const glm::vec3 c = sim::RgbToYCoCg(stored(second, x + i, y + j));
+          mean += c / 9.0f;
+          lo = glm::min(lo, c);
+          hi = glm::max(hi, c);
+        }
+      }
+      const glm::vec3 hy = sim::RgbToYCoCg(history);
+      float t = 0.0f;
+      for (int c = 0; c < 3; ++c) {
+        const float range = hy[c] >= mean[c] ? hi[c] - mean[c] : mean[c] - lo[c];
+        t = std::max(t, std::abs(hy[c] - mean[c]) / (range + 1.0f / 256.0f));
+      }
+      const float beta = t <= 1.0f ? 0.7f + 0.2f * t : 0.9f * std::exp(-3.0f * (t - 1.0f));
+      (t <= 1.0f ? inside : outside) += 1;
+      ASSERT_NEAR(testing::LayerValue(feedback, x, y), beta, 2e-3f) << x << "," << y << " t " << t;
+      const glm::vec3 current = stored(second, x, y);
+      const glm::vec3 expected = current + beta * (history - current);
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(output.colour.At(x, y)[c], expected[c], 2e-3f) << x << "," << y;
+    }
+  }
+  EXPECT_GT(inside, 20);  // both branches of the weight are exercised
+  EXPECT_GT(outside, 20);
 }
 
 // ---- history resampling ---------------------------------------------------------------------
