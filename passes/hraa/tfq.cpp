@@ -46,8 +46,13 @@ bool Inside(glm::ivec2 p, int width, int height) { return p.x >= 0 && p.y >= 0 &
 
 glm::ivec2 Rounded(glm::vec2 v) { return {static_cast<int>(std::floor(v.x + 0.5f)), static_cast<int>(std::floor(v.y + 0.5f))}; }
 
-// The luma the colour-flow SAD compares: Rec. 709 weights on the 8-bit sRGB-encoded value.
-float SadLuma(const glm::vec4& linear) { return sim::Rec709Luma(sim::EncodeSrgb(glm::vec3(linear))); }
+// The luma the colour-flow SAD compares: Rec. 709 weights on the 8-bit sRGB codes. Frame N is
+// loaded decoded (the resolve needs linear values), so re-encoding gives its stored codes back;
+// N-2 is read through the UNORM view, which returns the codes.
+float SadLuma(const glm::vec4& linear) {
+  const auto code = [](float c) { return sim::Unorm8ToFloat(sim::FloatToSrgb8(c)); };
+  return sim::Rec709Luma({code(linear.r), code(linear.g), code(linear.b)});
+}
 
 // The resolve of one pixel. `along` pairs the current frame's samples (X for A, Y for B),
 // `missing` the previous frame's.
@@ -115,7 +120,7 @@ struct Resolver {
     float sad = 0.0f;
     for (int i = 0; i < 9; ++i) {
       const glm::ivec2 d(i % 3 - 1, i / 3 - 1);
-      sad += std::abs(SadLuma(n[static_cast<std::size_t>(i)]) - SadLuma(LoadAt(lane, *prev2, r + d)));
+      sad += std::abs(SadLuma(n[static_cast<std::size_t>(i)]) - sim::Rec709Luma(glm::vec3(LoadAt(lane, *prev2, r + d))));
     }
     return sad / 9.0f > params.colourThreshold;
   }
@@ -189,7 +194,8 @@ void TfqStage::Resolve(sim::Machine& machine, sim::Texture2D<glm::vec4>& out) {
   if (havePrevious) {
     resolver.prev1 = d.Read(ring_.Colour(1));
     resolver.prevVel = d.Read(ring_.Velocity(1));
-    if (ring_.Frames() >= 3 && ring_.PhaseB(2) == phaseB) resolver.prev2 = d.Read(ring_.Colour(2));
+    // N-2 only feeds the SAD: read through the UNORM view, its codes as they are (aa-facts §1.9).
+    if (ring_.Frames() >= 3 && ring_.PhaseB(2) == phaseB) resolver.prev2 = d.Read(ring_.Colour(2)).As(sim::Format::RGBA8Unorm);
   }
   const sim::RwTextureView<glm::vec4> target = d.ReadWrite(out);
   validity_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
