@@ -16,10 +16,17 @@
 namespace passes::hraa {
 namespace {
 
-constexpr sim::KernelInfo kTaaKernel{.vgprs = 40, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 150,
-                                     .source = "hand count: 9 loads, 9 YCoCg conversions, mean/min/max, the "
-                                                "history fetch (up to 5 samples and their weights), t, exp, "
-                                                "blend, store"};
+// Hand counts per form of the history read: the window (9 loads, 9 YCoCg conversions, mean, min,
+// max: about 80), t and the exponential (25), the blend and store (15), plus the read: one
+// bilinear sample (bilinear, maccormack: 10), three loads and the correction (bfecc: 15), four
+// bilinear samples, their weights and the correction (gpu-bfecc: 45).
+sim::KernelInfo TaaKernel(Resampling mode) {
+  constexpr std::string_view kSource = "hand count: 3x3 window in YCoCg, mean/min/max, t, exp, blend; plus the "
+                                       "history read of the resampling form";
+  const double read = mode == Resampling::GpuBfecc ? 45.0 : mode == Resampling::Bfecc ? 15.0 : 10.0;
+  return {.vgprs = mode == Resampling::GpuBfecc ? 48 : 40, .sgprs = 24, .ldsBytesPerGroup = 0,
+          .valuInstructionsPerWave = 120.0 + read, .source = kSource};
+}
 
 // One 8-bit step: keeps a flat window's zero range from dividing by zero (hraa.h).
 constexpr float kRangeEpsilon = 1.0f / 256.0f;
@@ -94,7 +101,7 @@ class HraaPass final : public Pass {
   void Blend(sim::Machine& machine, const sim::Texture2D<glm::vec4>& current, const sim::Texture2D<glm::vec2>& velocity,
              const sim::Texture2D<glm::vec4>* history, sim::Texture2D<glm::vec4>& out) {
     const int width = current.Width(), height = current.Height();
-    sim::Dispatch d(std::string(kTaaDispatch), kTaaKernel);
+    sim::Dispatch d(std::string(kTaaDispatch), TaaKernel(params_.resampling));
     const sim::TextureView<glm::vec4> fresh = d.Read(current);
     const sim::TextureView<glm::vec2> motion = d.Read(velocity);
     std::optional<HistoryFetch> fetch;
