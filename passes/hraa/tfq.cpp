@@ -15,11 +15,12 @@ namespace {
 constexpr std::string_view kUnsharpDispatch = "tfq/unsharp";
 
 // Hand counts per wave of the kernels below (one instruction per lane-wide operation): the
-// resolve's 9 + 2 + 2 x 9 + 9 loads' addressing, 18 lumas and velocity differences, box, blend.
+// resolve's 40 loads (3x3 of N, two 3x3 velocity windows, 3x3 of N-2, the N-1 pair, two
+// velocities) and their addressing, 18 lumas, 9 velocity differences, the box, pairs and blend.
 constexpr sim::KernelInfo kResolveKernel{.vgprs = 48, .sgprs = 24, .ldsBytesPerGroup = 0,
                                          .valuInstructionsPerWave = 260,
-                                         .source = "hand count: 38 loads' addressing, 9 lumas (encode + dot), "
-                                                   "two 3x3 SADs, the 3x3 box, pairs and tent, the limit"};
+                                         .source = "hand count: 40 loads' addressing, 18 lumas, two 3x3 SADs, the 3x3 "
+                                                   "box, pairs and tent, the limit"};
 constexpr sim::KernelInfo kUnsharpKernel{.vgprs = 16, .sgprs = 16, .ldsBytesPerGroup = 0,
                                          .valuInstructionsPerWave = 30,
                                          .source = "hand count: 5 loads' addressing, a 5-tap weighted sum, max"};
