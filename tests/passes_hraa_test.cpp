@@ -94,6 +94,9 @@ int Validity(const PassOutput& output, int x, int y) {
 
 // ---- the TFQ resolve ------------------------------------------------------------------------
 
+// A diagonal edge for the phase tests.
+glm::vec3 StaticSceneForPhases(glm::vec2 p) { return glm::vec3(p.x + p.y > 11.3f ? 0.8f : 0.1f); }
+
 // Frames A, B, A, B of a hand-made image per phase: with N-2 = N and no motion, every pixel is
 // 1/4 [A(x,y) + A(x+1,y) + B(x,y) + B(x,y+1)] (tfq.h), the right and bottom neighbours clamped.
 TEST(PassesHraa, TfqResolveAveragesTheFourFlipQuadPointsOfTwoFrames) {
@@ -126,6 +129,25 @@ TEST(PassesHraa, TfqResolveAveragesTheFourFlipQuadPointsOfTwoFrames) {
       }
     }
   }
+}
+
+// Two frames of the same half (schedule "none" repeats one pattern) do not complete the pattern:
+// the second frame interpolates from itself as frame 0 does, and a new sequence starts over.
+TEST(PassesHraa, APreviousFrameOfTheSamePhaseIsNoHistory) {
+  const int w = 12, h = 10;
+  sim::Machine machine = MakeMachine();
+  const std::unique_ptr<Pass> pass = MakePass("tfq");
+  Frame first = Render(w, h, 0, StaticSceneForPhases);
+  const PassOutput zero = pass->Run(machine, first.Inputs(), Strategy::StencilCulled);
+  first.index = 1;  // frame 1 drawn with frame 0's pattern
+  const PassOutput again = pass->Run(machine, first.Inputs(), Strategy::StencilCulled);
+  EXPECT_EQ(Validity(again, 3, 3), static_cast<int>(hraa::TfqValidity::NoHistory));
+  EXPECT_TRUE(CompareOutputs(zero, again).Identical());
+  const Frame second = Render(w, h, 1, StaticSceneForPhases);
+  EXPECT_EQ(Validity(pass->Run(machine, second.Inputs(), Strategy::StencilCulled), 3, 3),
+            static_cast<int>(hraa::TfqValidity::ColourLimited));  // A then B: history, no N-2 yet
+  first.index = 0;  // a new sequence
+  EXPECT_TRUE(CompareOutputs(zero, pass->Run(machine, first.Inputs(), Strategy::StencilCulled)).Identical());
 }
 
 // A disc and a slanted edge, white on black.
