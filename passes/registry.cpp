@@ -9,6 +9,8 @@
 #include "passes/filmic_smaa/filmic_t2x.h"
 #include "passes/fxaa/fxaa.h"
 #include "passes/fxaa_miniengine/fxaa_miniengine.h"
+#include "passes/hraa/hraa.h"
+#include "passes/hraa/tfq.h"
 #include "passes/mlaa/mlaa.h"
 #include "passes/smaa/smaa.h"
 #include "passes/smaa/smaa_1tx.h"
@@ -40,6 +42,8 @@ std::span<const RegisteredPass> AllPasses() {
       {cmaa2::Info, cmaa2::Make},
       {taa_ue4::Info, taa_ue4::Make},
       {tscmaa::Info, tscmaa::Make},
+      {hraa::TfqInfo, hraa::MakeTfq},
+      {hraa::HraaInfo, hraa::MakeHraa},
   };
   return kPasses;
 }
