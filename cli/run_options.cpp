@@ -516,30 +516,41 @@ namespace cli {
 
 std::uint64_t EstimateSequenceBytes(const study::ExperimentConfig& config) {
   const std::uint64_t pixels = std::uint64_t(config.width) * std::uint64_t(config.height);
-  // Ground truth: colour, coverage, edge, edge mask and RGBA colour; this frame's and the last.
-  const std::uint64_t groundTruths = 2 * (sizeof(glm::vec3) + sizeof(float) + 1 + sizeof(float) + sizeof(glm::vec4));
-  // Per group: the pipeline, last frame's object ids, pixel ages and the reprojection.
-  std::vector<std::string> schedules;
-  std::uint64_t groups = 0;
-  for (const passes::PassConfig& pass : config.passes) {
-    const passes::PassInfo& info = pass.Info();
+  const auto frames = static_cast<std::uint64_t>(config.sequence.frames);
+  // Every frame's ground truth (colour, coverage, edge, edge mask, RGBA colour) is kept.
+  const std::uint64_t groundTruths = frames * (sizeof(glm::vec3) + sizeof(float) + 1 + sizeof(float) + sizeof(glm::vec4));
+  // Groups run one at a time (study/sequence_study.cpp): the largest group's pipeline, object ids,
+  // ages and reprojection, its temporal passes' instances (every strategy, alive for the
+  // sequence), one spatial pass run at a time with the first strategy's output kept for the
+  // comparison, and per track its last image and every frame's display codes.
+  struct Group {
+    std::string schedule;
+    std::uint64_t bytes = 0, largestSpatialRun = 0;
+  };
+  std::vector<Group> groups;
+  const std::uint64_t perTrack = sizeof(glm::vec4) + 3 * frames;
+  for (const study::PlannedPass& planned : study::PlanPasses(config)) {
+    const passes::PassInfo& info = planned.config.Info();
     const std::string schedule =
         !info.temporal ? "none" : (config.sequence.jitterOverride.empty() ? std::string(info.jitter) : config.sequence.jitterOverride);
-    if (std::find(schedules.begin(), schedules.end(), schedule) != schedules.end()) continue;
-    schedules.push_back(schedule);
-    const int samples = raster::JitterScheduleSamples(schedule);
-    const fmask::EqaaConfig mode = samples == 0 ? config.modes.front() : fmask::EqaaConfig{samples, samples, samples};
-    groups += EstimateFrameBytes(1, 1, mode, nullptr, 0) + sizeof(std::uint32_t) + 1 + sizeof(glm::vec2) + 1;
+    auto group = std::find_if(groups.begin(), groups.end(), [&](const Group& each) { return each.schedule == schedule; });
+    if (group == groups.end()) {
+      const int samples = raster::JitterScheduleSamples(schedule);
+      const fmask::EqaaConfig mode = samples == 0 ? config.modes.front() : fmask::EqaaConfig{samples, samples, samples};
+      groups.push_back({schedule, EstimateFrameBytes(1, 1, mode, nullptr, 0) + sizeof(std::uint32_t) + 1 +
+                                      sizeof(glm::vec2) + 1 + perTrack, 0});
+      group = groups.end() - 1;
+    }
+    group->bytes += perTrack;
+    if (info.temporal) {
+      group->bytes += info.strategies.size() * info.bytesPerPixel;
+    } else {
+      group->largestSpatialRun = std::max(group->largestSpatialRun, info.bytesPerPixel + sizeof(glm::vec4));
+    }
   }
-  // Per technique (each group's frames and each pass): the last image and every frame's codes;
-  // per pass and strategy an instance alive for the whole sequence.
-  const std::uint64_t frameCodes = 3 * static_cast<std::uint64_t>(config.sequence.frames);
-  std::uint64_t techniques = schedules.size() * (sizeof(glm::vec4) + frameCodes);
-  for (const passes::PassConfig& pass : config.passes) {
-    const passes::PassInfo& info = pass.Info();
-    techniques += sizeof(glm::vec4) + frameCodes + info.strategies.size() * info.bytesPerPixel;
-  }
-  return pixels * (groundTruths + groups + techniques);
+  std::uint64_t largestGroup = 0;
+  for (const Group& group : groups) largestGroup = std::max(largestGroup, group.bytes + group.largestSpatialRun);
+  return pixels * (groundTruths + largestGroup);
 }
 
 }  // namespace cli

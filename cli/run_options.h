@@ -93,9 +93,10 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options);
 std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::EqaaConfig>& modes,
                                std::span<const passes::PassConfig> postPasses,
                                std::span<const std::string> resolves = {}, std::size_t comparedPolicies = 0);
-// What a multi-frame run adds while its sequence runs (study/sequence_study.cpp): every group's
-// frame pipeline and reprojection state, every pass instance of every strategy alive for the
-// whole sequence, two ground truths, and per technique its last image and each frame's codes.
+// What a multi-frame run adds while its sequence runs (study/sequence_study.cpp): every frame's
+// ground truth, and the largest group (they run one at a time): its frame pipeline and
+// reprojection state, its temporal passes' instances, one spatial pass run, and per technique its
+// last image and each frame's display codes.
 std::uint64_t EstimateSequenceBytes(const study::ExperimentConfig& config);
 
 }  // namespace cli

@@ -60,14 +60,19 @@ double MeanCodeDistance(const std::vector<std::uint8_t>& a, const std::vector<st
 struct TrackState {
   const PlannedPass* pass = nullptr;  // null: the drawn frames
   std::vector<passes::Strategy> strategies;
-  std::vector<std::unique_ptr<passes::Pass>> instances;  // one per strategy, for the whole sequence
+  // One per strategy. A temporal pass keeps its instances for the whole sequence (its history);
+  // a spatial pass gets fresh ones every frame (it keeps nothing between frames, tests/
+  // passes_all_test.cpp), so a group holds only its temporal passes' targets at once.
+  std::vector<std::unique_ptr<passes::Pass>> instances;
   std::optional<sim::Texture2D<glm::vec4>> previous;
   std::vector<std::vector<std::uint8_t>> codes;  // per frame
 };
 
 struct GroupState {
   SequenceGroup result;
-  std::unique_ptr<SequenceRenderer> renderer;
+  sim::FrameSettings settings;
+  raster::SamplePattern pattern;
+  std::unique_ptr<SequenceRenderer> renderer;  // while the group runs
   std::vector<TrackState> tracks;
   std::optional<sim::Texture2D<std::uint32_t>> previousIds;
   std::vector<std::uint8_t> ages;
@@ -92,15 +97,12 @@ class SequenceStudy {
     sequence.framesPerSecond = config_.sequence.framesPerSecond;
     sequence.groundTruthStill = NothingMoves();
     for (const PlannedPass& pass : planned_) AddPass(pass);
-    std::optional<StudyGroundTruth> previousTruth;
-    for (int frame = 0; frame < frames; ++frame) {
-      StudyGroundTruth truth = GroundTruthAt(frame, previousTruth);
-      for (GroupState& group : groups_) StepGroup(group, frame, truth, previousTruth);
-      previousTruth = std::move(truth);
-    }
+    for (int frame = 0; frame < frames; ++frame) AddGroundTruth(frame);
+    // One group at a time, so only its pipeline and its temporal passes' targets exist at once.
     for (GroupState& group : groups_) {
-      for (std::size_t t = 0; t < group.tracks.size(); ++t) Conclude(group.result, group.result.tracks[t], group.tracks[t]);
+      RunGroup(group);
       sequence.groups.push_back(std::move(group.result));
+      group = {};
     }
   }
 
@@ -111,20 +113,38 @@ class SequenceStudy {
                        [](const scenes::Mesh& mesh) { return mesh.motion.IsStatic(); });
   }
 
-  StudyGroundTruth GroundTruthAt(int frame, std::optional<StudyGroundTruth>& previous) {
+  // Every frame's ground truth is kept for the groups that follow; when nothing moves, one serves all.
+  void AddGroundTruth(int frame) {
     StudySequence& sequence = *study_.sequence;
-    StudyGroundTruth truth;
-    if (sequence.groundTruthStill && previous) {
-      truth = *previous;
-    } else {
-      truth = Step(observer_, "ground truth frame " + std::to_string(frame), [&] {
+    if (!sequence.groundTruthStill || truths_.empty()) {
+      truths_.push_back(Step(observer_, "ground truth frame " + std::to_string(frame), [&] {
         return RenderGroundTruth(scenes::SceneAt(inputs_.scene, config_.sequence.cameraPath, frame), config_, observer_);
-      });
-      sequence.groundTruthSeconds += truth.seconds;
-      sequence.groundTruthCacheHits += truth.cacheHit ? 1 : 0;
+      }));
+      sequence.groundTruthSeconds += truths_.back().seconds;
+      sequence.groundTruthCacheHits += truths_.back().cacheHit ? 1 : 0;
     }
-    if (observer_.sequenceImage) observer_.sequenceImage(nullptr, nullptr, frame, truth.colour);
-    return truth;
+    if (observer_.sequenceImage) observer_.sequenceImage(nullptr, nullptr, frame, TruthAt(frame).colour);
+  }
+
+  const StudyGroundTruth& TruthAt(int frame) const {
+    return truths_[std::min(static_cast<std::size_t>(frame), truths_.size() - 1)];
+  }
+
+  void RunGroup(GroupState& group) {
+    group.renderer = std::make_unique<SequenceRenderer>(machine_, inputs_.scene, inputs_.frame, group.settings,
+                                                        raster::JitterSchedule::Make(group.result.schedule, group.pattern),
+                                                        config_.sequence);
+    for (TrackState& track : group.tracks) {
+      if (track.pass && track.pass->config.Info().temporal) track.instances = MakeInstances(track);
+    }
+    for (int frame = 0; frame < config_.sequence.frames; ++frame) StepGroup(group, frame);
+    for (std::size_t t = 0; t < group.tracks.size(); ++t) Conclude(group.result, group.result.tracks[t], group.tracks[t]);
+  }
+
+  static std::vector<std::unique_ptr<passes::Pass>> MakeInstances(const TrackState& track) {
+    std::vector<std::unique_ptr<passes::Pass>> instances;
+    for (std::size_t s = 0; s < track.strategies.size(); ++s) instances.push_back(track.pass->config.Make());
+    return instances;
   }
 
   // The group the pass reads its frames from, made on first use.
@@ -149,12 +169,10 @@ class SequenceStudy {
     for (GroupState& group : groups_) {
       if (group.result.schedule == schedule && group.result.mode == mode) return group;
     }
-    GroupState& group = groups_.emplace_back();
+    GroupState& group = groups_.emplace_back(GroupState{.result = {}, .settings = FrameSettingsFor(inputs_, config_, mode, pattern, config_.policy),
+                                                        .pattern = pattern, .renderer = nullptr, .tracks = {}, .previousIds = {}, .ages = {}});
     group.result.schedule = schedule;
     group.result.mode = mode;
-    group.renderer = std::make_unique<SequenceRenderer>(
-        machine_, inputs_.scene, inputs_.frame, FrameSettingsFor(inputs_, config_, mode, pattern, config_.policy),
-        raster::JitterSchedule::Make(schedule, pattern), config_.sequence);
     AddTrack(group, nullptr);
     return group;
   }
@@ -176,10 +194,7 @@ class SequenceStudy {
       track.folder = GroupFolder(group.result) + "/" + name + (pass->sweepPoint.empty() ? "" : "/" + SweepSlug(pass->sweepPoint));
       state.strategies = ChosenStrategies(config_, pass->config.Info());
       if (state.strategies.empty()) throw std::invalid_argument("pass " + name + " runs under none of the chosen strategies");
-      for (const passes::Strategy strategy : state.strategies) {
-        state.instances.push_back(pass->config.Make());
-        track.runs.push_back({strategy, {}});
-      }
+      for (const passes::Strategy strategy : state.strategies) track.runs.push_back({strategy, {}});
     } else {
       track.runs.push_back({passes::Strategy::StencilCulled, {}});
     }
@@ -196,8 +211,8 @@ class SequenceStudy {
     return "frame " + std::to_string(frame) + " " + group.schedule + " " + fmask::EqaaName(group.mode);
   }
 
-  void StepGroup(GroupState& group, int frame, const StudyGroundTruth& truth,
-                 const std::optional<StudyGroundTruth>& previousTruth) {
+  void StepGroup(GroupState& group, int frame) {
+    const StudyGroundTruth& truth = TruthAt(frame);
     const std::string label = FrameLabel(group.result, frame);
     Step(observer_, "sequence " + label, [&] { group.renderer->Render(frame); });
     group.result.tracks.front().runs.front().frames.push_back(Summarise(machine_.TakeReports()));
@@ -211,7 +226,7 @@ class SequenceStudy {
     }
     group.result.disoccludedPixels.push_back(reprojection ? reprojection->disoccludedPixels : 0);
     group.result.groundTruthFlicker.push_back(
-        reprojection ? CompensatedDifference(truth.colour, previousTruth->colour, *reprojection) : kNaN);
+        reprojection ? CompensatedDifference(truth.colour, TruthAt(frame - 1).colour, *reprojection) : kNaN);
     const FrameContext context{frame, label, truth, reprojection ? &*reprojection : nullptr, group.ages};
     Record(group.result, group.result.tracks.front(), group.tracks.front(), *inputs.colour, context);
     for (std::size_t t = 1; t < group.tracks.size(); ++t) {
@@ -236,10 +251,13 @@ class SequenceStudy {
     std::optional<StudyPass> result;
     if (entry) result = NewStudyPass(*state.pass, context.label);
     std::optional<passes::PassOutput> first;
+    const bool temporal = state.pass->config.Info().temporal;
     for (std::size_t s = 0; s < state.strategies.size(); ++s) {
       const std::string strategyName(passes::StrategyName(state.strategies[s]));
+      const std::unique_ptr<passes::Pass> fresh = temporal ? nullptr : state.pass->config.Make();
+      passes::Pass& pass = temporal ? *state.instances[s] : *fresh;
       passes::PassOutput output = Step(observer_, "sequence " + context.label + " pass " + track.technique + " [" + strategyName + "]",
-                                       [&] { return state.instances[s]->Run(machine_, inputs, state.strategies[s]); });
+                                       [&] { return pass.Run(machine_, inputs, state.strategies[s]); });
       std::vector<sim::DispatchReport> reports = machine_.TakeReports();
       track.runs[s].frames.push_back(Summarise(reports));
       if (result) {
@@ -296,6 +314,7 @@ class SequenceStudy {
   Study& study_;
   const std::vector<PlannedPass> planned_ = PlanPasses(config_);
   std::vector<GroupState> groups_;
+  std::vector<StudyGroundTruth> truths_;  // per frame, or one when nothing moves
 };
 
 }  // namespace
