@@ -177,6 +177,12 @@ void AddSequenceOptions(CLI::App& command, RunCommandOptions& options) {
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   command
+      .add_option("--sequence-post", options.sequencePost,
+                  "The --post passes followed over the frames: temporal (every temporal pass), all, or a "
+                  "comma-separated list; spatial passes cost a run and a scoring per frame each")
+      ->type_name("LIST")
+      ->capture_default_str();
+  command
       .add_option("--velocity-buffer", options.velocityBuffer,
                   "What passes read as velocities: float (the frame's target), rg8 or rg8-half (seed 000's 8-bit "
                   "two-piece-linear buffer over 0..40 px, at full or half resolution with the front-most velocity of "
@@ -227,12 +233,22 @@ void CheckGroundTruthSamples(int samples) {
 
 // A temporal pass's schedule must draw the samples it reads, and sequence options need frames.
 void CheckSequence(const CLI::App& command, const RunCommandOptions& options) {
-  for (const char* option : {"--camera-path", "--camera-speed", "--jitter", "--fps", "--velocity-buffer"}) {
+  for (const char* option :
+       {"--camera-path", "--camera-speed", "--jitter", "--fps", "--velocity-buffer", "--sequence-post"}) {
     if (options.frames == 1 && command.count(option) > 0) {
       throw CLI::ValidationError(std::string(option) + ": only a multi-frame run uses it; add --frames N (N > 1)");
     }
   }
   if (options.frames == 1) return;
+  if (options.sequencePost != "temporal" && options.sequencePost != "all") {
+    for (const std::string_view item : SplitList(options.sequencePost)) {
+      const bool posted = std::any_of(options.postPasses.begin(), options.postPasses.end(),
+                                      [&](const passes::PassConfig& pass) { return pass.Info().name == item; });
+      if (!posted) {
+        throw CLI::ValidationError("--sequence-post: " + std::string(item) + " is not one of the run's --post passes");
+      }
+    }
+  }
   for (const passes::PassConfig& pass : options.postPasses) {
     const passes::PassInfo& info = pass.Info();
     if (!info.temporal) continue;
@@ -466,6 +482,13 @@ study::ExperimentConfig ExperimentFrom(const RunCommandOptions& options) {
   config.sequence.framesPerSecond = options.framesPerSecond;
   config.sequence.jitterOverride = options.jitter;
   config.sequence.velocityBuffer = *study::VelocityBufferByName(options.velocityBuffer);
+  if (options.sequencePost == "all") {
+    config.sequence.followed = std::vector<std::string>();
+    for (const passes::PassConfig& pass : options.postPasses) config.sequence.followed->emplace_back(pass.Info().name);
+  } else if (options.sequencePost != "temporal") {
+    config.sequence.followed = std::vector<std::string>();
+    for (const std::string_view item : SplitList(options.sequencePost)) config.sequence.followed->emplace_back(item);
+  }
   if (!options.noCache) {
     config.groundTruth.cache = options.cache;
     config.tableCache = std::filesystem::path(options.cache) / "tables";
@@ -531,6 +554,7 @@ std::uint64_t EstimateSequenceBytes(const study::ExperimentConfig& config) {
   const std::uint64_t perTrack = sizeof(glm::vec4) + 3 * frames;
   for (const study::PlannedPass& planned : study::PlanPasses(config)) {
     const passes::PassInfo& info = planned.config.Info();
+    if (!study::Follows(config.sequence, info)) continue;
     const std::string schedule =
         !info.temporal ? "none" : (config.sequence.jitterOverride.empty() ? std::string(info.jitter) : config.sequence.jitterOverride);
     auto group = std::find_if(groups.begin(), groups.end(), [&](const Group& each) { return each.schedule == schedule; });

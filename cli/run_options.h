@@ -59,6 +59,7 @@ struct RunCommandOptions {
   std::string jitter;        // "" = each temporal pass's own schedule
   double framesPerSecond = 60.0;
   std::string velocityBuffer = "float";
+  std::string sequencePost = "temporal";  // temporal, all or a list of --post passes
   std::string progress = "auto";
   int threads = 0;  // default set by AddRunCommand: every core
   std::string out = "out/report";

@@ -663,6 +663,7 @@ nlohmann::ordered_json RunConfigurationJson(const RunCommandOptions& options, in
           {"jitter", options.jitter.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.jitter)},
           {"fps", options.framesPerSecond},
           {"velocity_buffer", options.velocityBuffer},
+          {"sequence_post", options.sequencePost},
           {"gt_samples", options.groundTruthSamples},
           {"cache", options.noCache ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.cache)},
           {"threads", threads}};

@@ -2,6 +2,7 @@
 
 #include "study/sequence.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace study {
@@ -11,6 +12,11 @@ sim::FrameSettings WithPattern(sim::FrameSettings settings, const raster::Jitter
   return settings;
 }
 }  // namespace
+
+bool Follows(const SequenceConfig& config, const passes::PassInfo& info) {
+  if (!config.followed) return info.temporal;
+  return std::find(config.followed->begin(), config.followed->end(), info.name) != config.followed->end();
+}
 
 SequenceRenderer::SequenceRenderer(sim::Machine& machine, const scenes::Scene& scene, const FrameScene& base,
                                    sim::FrameSettings settings, raster::JitterSchedule schedule,

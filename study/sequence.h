@@ -24,12 +24,18 @@ struct SequenceConfig {
   scenes::CameraPath cameraPath{};
   // Simulated frame rate: passes read 1 / framesPerSecond as FrameInputs::frameSeconds.
   double framesPerSecond = 60.0;
+  // The passes of ExperimentConfig::passes followed over the sequence, by name; nullopt: the
+  // temporal ones (a spatial pass over a sequence costs a run and a scoring per frame).
+  std::optional<std::vector<std::string>> followed;
   // Replaces every temporal pass's own schedule (PassInfo::jitter) when set.
   std::string jitterOverride;
   // What passes read as velocities: the float target, or seed 000's 8-bit buffers
   // (study/velocity_buffer.h), packed by a dispatch after each frame's draw.
   VelocityBuffer velocityBuffer = VelocityBuffer::Float;
 };
+
+// Whether the sequence follows the pass (SequenceConfig::followed).
+bool Follows(const SequenceConfig& config, const passes::PassInfo& info);
 
 class SequenceRenderer {
  public:

@@ -41,22 +41,6 @@ SequenceFrameCounters Summarise(const std::vector<sim::DispatchReport>& reports)
   return counters;
 }
 
-// The sRGB 8-bit codes of an image's RGB, kept per frame for the distance to the last frame.
-std::vector<std::uint8_t> DisplayCodes(const sim::Texture2D<glm::vec4>& image) {
-  std::vector<std::uint8_t> codes;
-  codes.reserve(image.Texels().size() * 3);
-  for (const glm::vec4& texel : image.Texels()) {
-    for (int c = 0; c < 3; ++c) codes.push_back(sim::EncodeSrgb8(texel[c]));
-  }
-  return codes;
-}
-
-double MeanCodeDistance(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
-  std::uint64_t sum = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) sum += static_cast<std::uint64_t>(std::abs(int(a[i]) - int(b[i])));
-  return a.empty() ? 0.0 : static_cast<double>(sum) / static_cast<double>(a.size());
-}
-
 struct TrackState {
   const PlannedPass* pass = nullptr;  // null: the drawn frames
   std::vector<passes::Strategy> strategies;
@@ -64,8 +48,7 @@ struct TrackState {
   // a spatial pass gets fresh ones every frame (it keeps nothing between frames, tests/
   // passes_all_test.cpp), so a group holds only its temporal passes' targets at once.
   std::vector<std::unique_ptr<passes::Pass>> instances;
-  std::optional<sim::Texture2D<glm::vec4>> previous;
-  std::vector<std::vector<std::uint8_t>> codes;  // per frame
+  std::vector<DisplayImage> frames;  // every frame's image as displayed (the last is the previous)
 };
 
 struct GroupState {
@@ -96,7 +79,9 @@ class SequenceStudy {
     sequence.cameraPath = std::string(scenes::CameraPathKindName(config_.sequence.cameraPath.kind));
     sequence.framesPerSecond = config_.sequence.framesPerSecond;
     sequence.groundTruthStill = NothingMoves();
-    for (const PlannedPass& pass : planned_) AddPass(pass);
+    for (const PlannedPass& pass : planned_) {
+      if (Follows(config_.sequence, pass.config.Info())) AddPass(pass);
+    }
     for (int frame = 0; frame < frames; ++frame) AddGroundTruth(frame);
     // One group at a time, so only its pipeline and its temporal passes' targets exist at once.
     for (GroupState& group : groups_) {
@@ -113,22 +98,26 @@ class SequenceStudy {
                        [](const scenes::Mesh& mesh) { return mesh.motion.IsStatic(); });
   }
 
-  // Every frame's ground truth is kept for the groups that follow; when nothing moves, one serves all.
+  // Every frame's ground truth is kept for the groups that follow, only what scoring reads (colour,
+  // edge mask) and its display form; when nothing moves, one serves all.
   void AddGroundTruth(int frame) {
     StudySequence& sequence = *study_.sequence;
     if (!sequence.groundTruthStill || truths_.empty()) {
-      truths_.push_back(Step(observer_, "ground truth frame " + std::to_string(frame), [&] {
+      StudyGroundTruth truth = Step(observer_, "ground truth frame " + std::to_string(frame), [&] {
         return RenderGroundTruth(scenes::SceneAt(inputs_.scene, config_.sequence.cameraPath, frame), config_, observer_);
-      }));
-      sequence.groundTruthSeconds += truths_.back().seconds;
-      sequence.groundTruthCacheHits += truths_.back().cacheHit ? 1 : 0;
+      });
+      sequence.groundTruthSeconds += truth.seconds;
+      sequence.groundTruthCacheHits += truth.cacheHit ? 1 : 0;
+      truth.image = {};
+      truthsShown_.push_back(ToDisplay(truth.colour));
+      truths_.push_back(std::move(truth));
     }
     if (observer_.sequenceImage) observer_.sequenceImage(nullptr, nullptr, frame, TruthAt(frame).colour);
   }
 
-  const StudyGroundTruth& TruthAt(int frame) const {
-    return truths_[std::min(static_cast<std::size_t>(frame), truths_.size() - 1)];
-  }
+  static std::size_t Index(int frame, std::size_t count) { return std::min(static_cast<std::size_t>(frame), count - 1); }
+  const StudyGroundTruth& TruthAt(int frame) const { return truths_[Index(frame, truths_.size())]; }
+  const DisplayImage& TruthShownAt(int frame) const { return truthsShown_[Index(frame, truthsShown_.size())]; }
 
   void RunGroup(GroupState& group) {
     group.renderer = std::make_unique<SequenceRenderer>(machine_, inputs_.scene, inputs_.frame, group.settings,
@@ -226,7 +215,7 @@ class SequenceStudy {
     }
     group.result.disoccludedPixels.push_back(reprojection ? reprojection->disoccludedPixels : 0);
     group.result.groundTruthFlicker.push_back(
-        reprojection ? CompensatedDifference(truth.colour, TruthAt(frame - 1).colour, *reprojection) : kNaN);
+        reprojection ? CompensatedDifference(TruthShownAt(frame), TruthShownAt(frame - 1), *reprojection) : kNaN);
     const FrameContext context{frame, label, truth, reprojection ? &*reprojection : nullptr, group.ages};
     Record(group.result, group.result.tracks.front(), group.tracks.front(), *inputs.colour, context);
     for (std::size_t t = 1; t < group.tracks.size(); ++t) {
@@ -291,15 +280,15 @@ class SequenceStudy {
     track.quality.push_back(
         Step(observer_, "metrics " + context.label + " " + track.technique,
              [&] { return ScoreAgainstGroundTruth(image, context.truth).scores; }));
-    track.flicker.push_back(context.reprojection ? CompensatedDifference(image, *state.previous, *context.reprojection) : kNaN);
-    track.ghosting.push_back(YoungPixelError(image, context.truth.colour, context.ages, kGhostFrames));
-    state.codes.push_back(DisplayCodes(image));
+    DisplayImage shown = ToDisplay(image);
+    track.flicker.push_back(context.reprojection ? CompensatedDifference(shown, state.frames.back(), *context.reprojection) : kNaN);
+    track.ghosting.push_back(YoungPixelError(shown, TruthShownAt(context.frame), context.ages, kGhostFrames));
+    state.frames.push_back(std::move(shown));
     if (observer_.sequenceImage) observer_.sequenceImage(&group, &track, context.frame, image);
-    state.previous = image;
   }
 
   static void Conclude(const SequenceGroup& group, SequenceTrack& track, TrackState& state) {
-    for (const std::vector<std::uint8_t>& codes : state.codes) track.distanceToFinal.push_back(MeanCodeDistance(codes, state.codes.back()));
+    for (const DisplayImage& frame : state.frames) track.distanceToFinal.push_back(MeanCodeDifference(frame, state.frames.back()));
     track.convergenceFrame = ConvergenceFrame(track.distanceToFinal, kConvergenceCodes);
     double excess = 0.0;
     for (std::size_t k = 1; k < track.flicker.size(); ++k) excess += track.flicker[k] - group.groundTruthFlicker[k];
@@ -315,6 +304,7 @@ class SequenceStudy {
   const std::vector<PlannedPass> planned_ = PlanPasses(config_);
   std::vector<GroupState> groups_;
   std::vector<StudyGroundTruth> truths_;  // per frame, or one when nothing moves
+  std::vector<DisplayImage> truthsShown_;
 };
 
 }  // namespace

@@ -15,7 +15,10 @@
 namespace study {
 namespace {
 
-glm::vec3 Codes(const glm::vec4& linear) { return sim::EncodeSrgb(glm::vec3(linear)) * 255.0f; }
+glm::vec3 CodesAt(const DisplayImage& image, int x, int y) {
+  const std::size_t i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x));
+  return {image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]};
+}
 
 double MeanAbs(const glm::vec3& a, const glm::vec3& b) {
   const glm::vec3 d = glm::abs(a - b);
@@ -39,21 +42,18 @@ std::pair<double, std::uint64_t> SumOverPixels(int width, int height, PixelValue
   return {std::accumulate(sums.begin(), sums.end(), 0.0), std::accumulate(counts.begin(), counts.end(), std::uint64_t{0})};
 }
 
-void CheckSameSize(const sim::Texture2D<glm::vec4>& a, const sim::Texture2D<glm::vec4>& b, int width, int height) {
-  if (a.Width() != width || a.Height() != height || b.Width() != width || b.Height() != height) {
-    throw std::invalid_argument("stability: images of different sizes");
-  }
+void CheckSameSize(const DisplayImage& a, const DisplayImage& b) {
+  if (a.width != b.width || a.height != b.height) throw std::invalid_argument("stability: images of different sizes");
 }
 
-// Bilinear on the host, clamped at the border, pixel centres at x + 0.5.
-glm::vec3 BilinearCodes(const sim::Texture2D<glm::vec4>& image, glm::vec2 at) {
+// Bilinear on the codes, clamped at the border, pixel centres at x + 0.5.
+glm::vec3 BilinearCodes(const DisplayImage& image, glm::vec2 at) {
   const glm::vec2 p = at - 0.5f;
   const glm::vec2 base = glm::floor(p);
   const glm::vec2 f = p - base;
   auto texel = [&](int dx, int dy) {
-    const int x = std::clamp(static_cast<int>(base.x) + dx, 0, image.Width() - 1);
-    const int y = std::clamp(static_cast<int>(base.y) + dy, 0, image.Height() - 1);
-    return Codes(image.At(x, y));
+    return CodesAt(image, std::clamp(static_cast<int>(base.x) + dx, 0, image.width - 1),
+                   std::clamp(static_cast<int>(base.y) + dy, 0, image.height - 1));
   };
   return glm::mix(glm::mix(texel(0, 0), texel(1, 0), f.x), glm::mix(texel(0, 1), texel(1, 1), f.x), f.y);
 }
@@ -61,6 +61,18 @@ glm::vec3 BilinearCodes(const sim::Texture2D<glm::vec4>& image, glm::vec2 at) {
 glm::ivec2 Nearest(glm::vec2 at) { return glm::ivec2(glm::floor(at)); }
 
 }  // namespace
+
+DisplayImage ToDisplay(const sim::Texture2D<glm::vec4>& linear) {
+  DisplayImage image{linear.Width(), linear.Height(), std::vector<std::uint8_t>(linear.Texels().size() * 3)};
+  const std::span<const glm::vec4> texels = linear.Texels();
+  sim::ParallelFor(static_cast<std::size_t>(image.height), [&](std::size_t y) {
+    const std::size_t row = y * static_cast<std::size_t>(image.width);
+    for (std::size_t i = row; i < row + static_cast<std::size_t>(image.width); ++i) {
+      for (int c = 0; c < 3; ++c) image.rgb[3 * i + static_cast<std::size_t>(c)] = sim::EncodeSrgb8(texels[i][c]);
+    }
+  });
+  return image;
+}
 
 Reprojection Reproject(const sim::Texture2D<glm::vec2>& velocity, const sim::Texture2D<std::uint32_t>& objectId,
                        const sim::Texture2D<std::uint32_t>& previousObjectId) {
@@ -84,13 +96,15 @@ Reprojection Reproject(const sim::Texture2D<glm::vec2>& velocity, const sim::Tex
   return result;
 }
 
-double CompensatedDifference(const sim::Texture2D<glm::vec4>& current, const sim::Texture2D<glm::vec4>& previous,
-                             const Reprojection& reprojection) {
-  CheckSameSize(current, previous, reprojection.width, reprojection.height);
+double CompensatedDifference(const DisplayImage& current, const DisplayImage& previous, const Reprojection& reprojection) {
+  CheckSameSize(current, previous);
+  if (current.width != reprojection.width || current.height != reprojection.height) {
+    throw std::invalid_argument("stability: reprojection of another size");
+  }
   const auto [sum, count] = SumOverPixels(reprojection.width, reprojection.height, [&](int x, int y) -> std::optional<double> {
     const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(reprojection.width) + static_cast<std::size_t>(x);
     if (!reprojection.tracked[i]) return std::nullopt;
-    return MeanAbs(Codes(current.At(x, y)), BilinearCodes(previous, reprojection.source[i]));
+    return MeanAbs(CodesAt(current, x, y), BilinearCodes(previous, reprojection.source[i]));
   });
   return count == 0 ? 0.0 : sum / static_cast<double>(count);
 }
@@ -113,22 +127,22 @@ std::vector<std::uint8_t> AdvanceAges(const std::vector<std::uint8_t>& previousA
   return ages;
 }
 
-std::optional<double> YoungPixelError(const sim::Texture2D<glm::vec4>& image, const sim::Texture2D<glm::vec4>& reference,
+std::optional<double> YoungPixelError(const DisplayImage& image, const DisplayImage& reference,
                                       const std::vector<std::uint8_t>& ages, std::uint8_t young) {
-  CheckSameSize(image, reference, image.Width(), image.Height());
-  const int width = image.Width();
-  const auto [sum, count] = SumOverPixels(width, image.Height(), [&](int x, int y) -> std::optional<double> {
+  CheckSameSize(image, reference);
+  const int width = image.width;
+  const auto [sum, count] = SumOverPixels(width, image.height, [&](int x, int y) -> std::optional<double> {
     if (ages[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] >= young) return std::nullopt;
-    return MeanAbs(Codes(image.At(x, y)), Codes(reference.At(x, y)));
+    return MeanAbs(CodesAt(image, x, y), CodesAt(reference, x, y));
   });
   if (count == 0) return std::nullopt;
   return sum / static_cast<double>(count);
 }
 
-double MeanCodeDifference(const sim::Texture2D<glm::vec4>& a, const sim::Texture2D<glm::vec4>& b) {
-  CheckSameSize(a, b, a.Width(), a.Height());
-  const auto [sum, count] = SumOverPixels(a.Width(), a.Height(), [&](int x, int y) -> std::optional<double> {
-    return MeanAbs(Codes(a.At(x, y)), Codes(b.At(x, y)));
+double MeanCodeDifference(const DisplayImage& a, const DisplayImage& b) {
+  CheckSameSize(a, b);
+  const auto [sum, count] = SumOverPixels(a.width, a.height, [&](int x, int y) -> std::optional<double> {
+    return MeanAbs(CodesAt(a, x, y), CodesAt(b, x, y));
   });
   return count == 0 ? 0.0 : sum / static_cast<double>(count);
 }

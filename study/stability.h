@@ -4,7 +4,8 @@
 // recently disoccluded pixels (ghosting); frames until a sequence settles (convergence).
 //
 // Differences are taken on display values: sRGB-encoded channels in 8-bit codes (0..255),
-// averaged over R, G and B, because flicker is seen on the display, not in linear light.
+// averaged over R, G and B, because flicker is seen on the display, not in linear light. Images
+// are kept in that form (3 bytes a pixel), so a sequence's frames cost little to keep.
 
 #include <cstdint>
 #include <optional>
@@ -16,6 +17,14 @@
 #include "sim/resources.h"
 
 namespace study {
+
+// An image as the display shows it: sim::EncodeSrgb8 of each of R, G, B, row-major.
+struct DisplayImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  friend bool operator==(const DisplayImage&, const DisplayImage&) = default;
+};
+DisplayImage ToDisplay(const sim::Texture2D<glm::vec4>& linear);
 
 // Where each pixel of frame k was in frame k - 1: its centre minus its velocity. A pixel is
 // tracked when that point lies on the screen and the previous frame's pixel nearest to it shows
@@ -29,10 +38,9 @@ struct Reprojection {
 Reprojection Reproject(const sim::Texture2D<glm::vec2>& velocity, const sim::Texture2D<std::uint32_t>& objectId,
                        const sim::Texture2D<std::uint32_t>& previousObjectId);
 
-// Mean over tracked pixels of |current(p) - previous(source(p))| in codes, the previous image
-// sampled bilinearly (exact for integer motion). 0 when nothing is tracked.
-double CompensatedDifference(const sim::Texture2D<glm::vec4>& current, const sim::Texture2D<glm::vec4>& previous,
-                             const Reprojection& reprojection);
+// Mean over tracked pixels of |current(p) - previous(source(p))| in codes, the previous image's
+// codes interpolated bilinearly (exact for integer motion). 0 when nothing is tracked.
+double CompensatedDifference(const DisplayImage& current, const DisplayImage& previous, const Reprojection& reprojection);
 
 // Frames since each pixel was last disoccluded, carried along the motion: 0 for a disoccluded
 // pixel, else the age at its source (nearest previous pixel) + 1, capped at `cap`. Frame 0 has
@@ -41,11 +49,11 @@ std::vector<std::uint8_t> AdvanceAges(const std::vector<std::uint8_t>& previousA
                                       std::uint8_t cap);
 
 // Mean |image - reference| in codes over pixels whose age is below `young`; nullopt when none is.
-std::optional<double> YoungPixelError(const sim::Texture2D<glm::vec4>& image, const sim::Texture2D<glm::vec4>& reference,
+std::optional<double> YoungPixelError(const DisplayImage& image, const DisplayImage& reference,
                                       const std::vector<std::uint8_t>& ages, std::uint8_t young);
 
 // Mean |a - b| in codes over every pixel.
-double MeanCodeDifference(const sim::Texture2D<glm::vec4>& a, const sim::Texture2D<glm::vec4>& b);
+double MeanCodeDifference(const DisplayImage& a, const DisplayImage& b);
 
 // The first frame from which every later distance (to the sequence's final frame) stays within
 // `tolerance`; nullopt for an empty list.

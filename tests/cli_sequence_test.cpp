@@ -30,7 +30,7 @@ constexpr int kFrames = 3;
 
 std::vector<std::string> SequenceRun(const fs::path& out) {
   return {"run",      "--scene",    "builtin:wheel", "--width",   "96",       "--height",   "64",
-          "--modes",  "1S/1Z/1F",   "--resolves",    "none",      "--post",   "copy,smaa",  "--gt-samples",
+          "--modes",  "1S/1Z/1F",   "--resolves",    "none",      "--post",   "copy,smaa,taa-ue4", "--sequence-post", "all",  "--gt-samples",
           "4",        "--no-cache", "--progress",    "never",     "--frames", std::to_string(kFrames),
           "--camera-path", "orbit", "--out",         out.string()};
 }
@@ -63,10 +63,18 @@ TEST_F(CliSequenceTest, EveryTechniqueHasEveryFrameAndTheJsonAgrees) {
   EXPECT_EQ(sequence["frames"], kFrames);
   EXPECT_EQ(sequence["camera_path"], "orbit");
   EXPECT_EQ(report["configuration"]["frames"], kFrames);
-  ASSERT_EQ(sequence["groups"].size(), 1u);
+  ASSERT_EQ(sequence["groups"].size(), 2u);
+  EXPECT_EQ(sequence["groups"][1]["schedule"], "halton8");
+  ASSERT_EQ(sequence["groups"][1]["tracks"].size(), 2u);  // frames, taa-ue4
   const nlohmann::json& group = sequence["groups"][0];
   EXPECT_EQ(group["schedule"], "none");
   ASSERT_EQ(group["tracks"].size(), 3u);  // frames, copy, smaa
+  // The temporal pass's study entry is its sequence's last frame.
+  bool taa = false;
+  for (const nlohmann::json& pass : report["passes"]) {
+    if (pass["name"] == "taa-ue4") taa = pass["input_frame"] == "frame " + std::to_string(kFrames - 1) + " halton8 1S/1Z/1F";
+  }
+  EXPECT_TRUE(taa);
   for (int k = 0; k < kFrames; ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "frame-%03d.png", k);
@@ -106,7 +114,9 @@ TEST(CliSequence, SequenceOptionsThatMakeNoSenseAreOneLineUsageErrors) {
       {{"--frames", "0"}, "--frames"},
       {{"--frames", "3", "--camera-path", "spiral"}, "--camera-path"},
       {{"--frames", "3", "--jitter", "halton9"}, "--jitter"},
-      {{"--frames", "3", "--fps", "0"}, "--fps"}};
+      {{"--frames", "3", "--fps", "0"}, "--fps"},
+      {{"--frames", "3", "--post", "smaa", "--sequence-post", "fxaa"}, "--sequence-post: fxaa is not one of the run's --post passes"},
+      {{"--sequence-post", "all"}, "--sequence-post: only a multi-frame run uses it"}};
   for (const auto& [extra, message] : cases) {
     std::vector<std::string> args = {"run", "--quick", "--out", (scratch / "out").string()};
     args.insert(args.end(), extra.begin(), extra.end());

@@ -123,6 +123,18 @@ TEST(SequenceRenderer, PackedVelocityBuffersReachThePasses) {
   EXPECT_TRUE(moving);
 }
 
+// By default a sequence follows the temporal passes only; a list names the passes it follows.
+TEST(SequenceStudy, FollowsTheTemporalPassesUnlessTold) {
+  SequenceConfig config;
+  const passes::PassInfo& smaa = passes::PassByName("smaa").info();
+  const passes::PassInfo& taa = passes::PassByName("taa-ue4").info();
+  EXPECT_FALSE(Follows(config, smaa));
+  EXPECT_TRUE(Follows(config, taa));
+  config.followed = std::vector<std::string>{"smaa"};
+  EXPECT_TRUE(Follows(config, smaa));
+  EXPECT_FALSE(Follows(config, taa));
+}
+
 ExperimentConfig SequenceExperiment() {
   ExperimentConfig config;
   config.scene = "builtin:wheel";
@@ -135,6 +147,7 @@ ExperimentConfig SequenceExperiment() {
   config.groundTruth.samplesPerPixel = 4;
   config.sequence.frames = 3;
   config.sequence.cameraPath.kind = scenes::CameraPathKind::Orbit;
+  config.sequence.followed = std::vector<std::string>{"copy", "smaa"};
   return config;
 }
 

@@ -15,7 +15,7 @@ namespace {
 constexpr int kSize = 16;
 
 // A grey ramp in 8-bit codes whose value depends on x and y, moved `shift` pixels right.
-sim::Texture2D<glm::vec4> Ramp(int shift) {
+sim::Texture2D<glm::vec4> RampTexture(int shift) {
   sim::Texture2D<glm::vec4> image("ramp", kSize, kSize);
   for (int y = 0; y < kSize; ++y) {
     for (int x = 0; x < kSize; ++x) {
@@ -25,6 +25,8 @@ sim::Texture2D<glm::vec4> Ramp(int shift) {
   }
   return image;
 }
+
+DisplayImage Ramp(int shift) { return ToDisplay(RampTexture(shift)); }
 
 sim::Texture2D<glm::vec2> Velocity(glm::vec2 v) {
   sim::Texture2D<glm::vec2> velocity("velocity", kSize, kSize);
@@ -66,11 +68,24 @@ TEST(Stability, AgesFollowTheMotionAndRestartOnDisocclusion) {
   ages = AdvanceAges(ages, right, 9);
   EXPECT_EQ(ages[0], 0);
   EXPECT_EQ(ages[1], 1);       // the pixel that entered one frame ago moved to x = 1
-  const sim::Texture2D<glm::vec4> image = Ramp(0), truth = Ramp(1);
+  const DisplayImage image = Ramp(0), truth = Ramp(1);
   const std::optional<double> young = YoungPixelError(image, truth, ages, 2);
   ASSERT_TRUE(young.has_value());
   EXPECT_GT(*young, 0.0);
   EXPECT_FALSE(YoungPixelError(image, truth, std::vector<std::uint8_t>(kSize * kSize, 9), 2).has_value());
+}
+
+// The display form is the sRGB codes: a linear value decoded from code k shows as k.
+TEST(Stability, TheDisplayFormHoldsTheSrgbCodes) {
+  const DisplayImage ramp = Ramp(0);
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const std::uint8_t code = static_cast<std::uint8_t>((x * 13 + y * 7) & 0xFF);
+      const std::size_t i = 3 * static_cast<std::size_t>(y * kSize + x);
+      EXPECT_EQ(ramp.rgb[i], code);
+      EXPECT_EQ(ramp.rgb[i + 2], code);
+    }
+  }
 }
 
 TEST(Stability, ConvergenceIsTheFirstFrameFromWhichEveryLaterOneIsClose) {
