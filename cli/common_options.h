@@ -15,6 +15,10 @@ namespace cli {
 
 // Refuse runs whose buffers would exceed this (EstimateRasterBytes, EstimateFrameBytes).
 inline constexpr std::uint64_t kMaxRunBytes = std::uint64_t{4} << 30;
+// `aasim run` keeps every image its report shows (every mode, resolve and pass, and with --frames
+// every frame's ground truth and each followed technique's frames), so its own limit is higher:
+// the default single-frame study at 1080p estimates 3.7 GiB, with --frames 8 6.2 GiB.
+inline constexpr std::uint64_t kMaxStudyBytes = std::uint64_t{8} << 30;
 
 // The names of a table of {name, value} entries, in table order, for CLI::IsMember.
 template <typename Table>

@@ -311,12 +311,15 @@ void ResolveSweeps(RunCommandOptions& options) {
 void CheckMemory(const RunCommandOptions& options) {
   std::uint64_t bytes = EstimateRunBytes(options.width, options.height, options.eqaaModes, PlannedPassConfigs(options),
                                          options.resolveNames, options.comparedPolicies.size());
-  if (options.frames > 1) bytes += EstimateSequenceBytes(ExperimentFrom(options));
-  if (bytes > kMaxRunBytes) {
-    throw CLI::ValidationError("--width " + std::to_string(options.width) + " --height " +
-                               std::to_string(options.height) + " --modes " + options.modes +
-                               ": needs about " + FormatGiB(bytes) + " GiB, over the " +
-                               FormatGiB(kMaxRunBytes) + " GiB limit");
+  std::string what = "--width " + std::to_string(options.width) + " --height " + std::to_string(options.height) +
+                     " --modes " + options.modes;
+  if (options.frames > 1) {
+    bytes += EstimateSequenceBytes(ExperimentFrom(options));
+    what += " --frames " + std::to_string(options.frames);
+  }
+  if (bytes > kMaxStudyBytes) {
+    throw CLI::ValidationError(what + ": needs about " + FormatGiB(bytes) + " GiB, over the " +
+                               FormatGiB(kMaxStudyBytes) + " GiB limit");
   }
 }
 
@@ -540,8 +543,9 @@ namespace cli {
 std::uint64_t EstimateSequenceBytes(const study::ExperimentConfig& config) {
   const std::uint64_t pixels = std::uint64_t(config.width) * std::uint64_t(config.height);
   const auto frames = static_cast<std::uint64_t>(config.sequence.frames);
-  // Every frame's ground truth (colour, coverage, edge, edge mask, RGBA colour) is kept.
-  const std::uint64_t groundTruths = frames * (sizeof(glm::vec3) + sizeof(float) + 1 + sizeof(float) + sizeof(glm::vec4));
+  // Every frame's ground truth is kept as scoring reads it (RGBA colour, edge mask) and as
+  // displayed (3 codes), and the one being rendered whole (colour, coverage, edge).
+  const std::uint64_t groundTruths = frames * (sizeof(glm::vec4) + sizeof(float) + 3) + sizeof(glm::vec3) + sizeof(float) + 1;
   // Groups run one at a time (study/sequence_study.cpp): the largest group's pipeline, object ids,
   // ages and reprojection, its temporal passes' instances (every strategy, alive for the
   // sequence), one spatial pass run at a time with the first strategy's output kept for the
