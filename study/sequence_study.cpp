@@ -217,7 +217,10 @@ class SequenceStudy {
     group.result.groundTruthFlicker.push_back(
         reprojection ? CompensatedDifference(TruthShownAt(frame), TruthShownAt(frame - 1), *reprojection) : kNaN);
     const FrameContext context{frame, label, truth, reprojection ? &*reprojection : nullptr, group.ages};
-    Record(group.result, group.result.tracks.front(), group.tracks.front(), *inputs.colour, context);
+    // The drawn frame as the 8-bit sRGB target the passes read holds it (passes::Srgb8ColourTarget),
+    // so it is scored with the quantisation the passes start from.
+    Record(group.result, group.result.tracks.front(), group.tracks.front(),
+           passes::DecodedSrgb8("frame sRGB8", passes::Srgb8ColourTarget("frame sRGB8", *inputs.colour)), context);
     for (std::size_t t = 1; t < group.tracks.size(); ++t) {
       RunTrack(group.result, group.result.tracks[t], group.tracks[t], inputs, context);
     }
@@ -287,8 +290,12 @@ class SequenceStudy {
     if (observer_.sequenceImage) observer_.sequenceImage(&group, &track, context.frame, image);
   }
 
-  static void Conclude(const SequenceGroup& group, SequenceTrack& track, TrackState& state) {
-    for (const DisplayImage& frame : state.frames) track.distanceToFinal.push_back(MeanCodeDifference(frame, state.frames.back()));
+  void Conclude(const SequenceGroup& group, SequenceTrack& track, TrackState& state) const {
+    // Convergence is judged where aliasing is: the last frame's ground-truth edge pixels.
+    const std::vector<float>& edges = TruthAt(config_.sequence.frames - 1).edgeMask;
+    for (const DisplayImage& frame : state.frames) {
+      track.distanceToFinal.push_back(MeanCodeDifference(frame, state.frames.back(), edges));
+    }
     track.convergenceFrame = ConvergenceFrame(track.distanceToFinal, kConvergenceCodes);
     double excess = 0.0;
     for (std::size_t k = 1; k < track.flicker.size(); ++k) excess += track.flicker[k] - group.groundTruthFlicker[k];

@@ -139,9 +139,13 @@ std::optional<double> YoungPixelError(const DisplayImage& image, const DisplayIm
   return sum / static_cast<double>(count);
 }
 
-double MeanCodeDifference(const DisplayImage& a, const DisplayImage& b) {
+double MeanCodeDifference(const DisplayImage& a, const DisplayImage& b, std::span<const float> mask) {
   CheckSameSize(a, b);
+  const bool masked = std::any_of(mask.begin(), mask.end(), [](float m) { return m != 0.0f; });
   const auto [sum, count] = SumOverPixels(a.width, a.height, [&](int x, int y) -> std::optional<double> {
+    if (masked && mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(a.width) + static_cast<std::size_t>(x)] == 0.0f) {
+      return std::nullopt;
+    }
     return MeanAbs(CodesAt(a, x, y), CodesAt(b, x, y));
   });
   return count == 0 ? 0.0 : sum / static_cast<double>(count);

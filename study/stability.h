@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -52,8 +53,9 @@ std::vector<std::uint8_t> AdvanceAges(const std::vector<std::uint8_t>& previousA
 std::optional<double> YoungPixelError(const DisplayImage& image, const DisplayImage& reference,
                                       const std::vector<std::uint8_t>& ages, std::uint8_t young);
 
-// Mean |a - b| in codes over every pixel.
-double MeanCodeDifference(const DisplayImage& a, const DisplayImage& b);
+// Mean |a - b| in codes over the pixels `mask` selects (non-zero), or every pixel when it selects
+// none or is empty.
+double MeanCodeDifference(const DisplayImage& a, const DisplayImage& b, std::span<const float> mask = {});
 
 // The first frame from which every later distance (to the sequence's final frame) stays within
 // `tolerance`; nullopt for an empty list.

@@ -93,6 +93,13 @@ TEST(Stability, ConvergenceIsTheFirstFrameFromWhichEveryLaterOneIsClose) {
   EXPECT_EQ(ConvergenceFrame({0.1, 0.0}, 0.5), 0);
   EXPECT_EQ(ConvergenceFrame({}, 0.5), std::nullopt);
   EXPECT_EQ(MeanCodeDifference(Ramp(0), Ramp(0)), 0.0);
+  // A mask restricts the mean to its pixels; one selecting nothing means every pixel.
+  DisplayImage changed = Ramp(0);
+  changed.rgb[0] = changed.rgb[1] = changed.rgb[2] = static_cast<std::uint8_t>(changed.rgb[0] + 30);
+  std::vector<float> mask(kSize * kSize, 0.0f);
+  EXPECT_DOUBLE_EQ(MeanCodeDifference(changed, Ramp(0), mask), 30.0 / (kSize * kSize));
+  mask[0] = 1.0f;
+  EXPECT_DOUBLE_EQ(MeanCodeDifference(changed, Ramp(0), mask), 30.0);
 }
 
 }  // namespace
