@@ -2,7 +2,9 @@
 
 #include "cli/sequence_report.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 
 #include "cli/frame_output.h"
@@ -276,12 +278,87 @@ ReportSection CountersSection(const study::Study& study) {
   return section;
 }
 
+// Seed 001's timing table ("Single Pass / Timing (ms)", PS4, 1080p): the temporal rows, each with
+// the dispatches of aasim's passes that do its work (docs/temporal.md "Cost").
+struct SeedTiming {
+  const char* item;
+  double milliseconds;
+  const char* pass;                          // the registered pass whose last frame is measured
+  std::vector<std::string_view> dispatches;  // empty: every dispatch of the pass
+};
+const std::vector<SeedTiming>& SeedTimings() {
+  static const std::vector<SeedTiming> kTimings = {
+      {"BFECC single value", 0.3, "hraa", {"hraa/forward"}},
+      {"Temporal FLIPQUAD (TFQ)", 0.2, "tfq", {"tfq/resolve"}},
+      {"TAA", 0.6, "hraa", {"hraa/forward", "hraa/taa"}},
+      {"TFQ + TAA", 0.62, "hraa", {}},
+  };
+  return kTimings;
+}
+constexpr double kSeedPixels = 1920.0 * 1080.0;
+
+// The timing's estimate on the pass's cheapest strategy at the run's size, scaled to 1080p by
+// pixel count; nullopt when the pass did not run.
+std::optional<double> Estimated1080pMs(const study::Study& study, const SeedTiming& timing) {
+  const double pixels = double(study.groundTruth.colour.Width()) * double(study.groundTruth.colour.Height());
+  std::optional<double> best;
+  for (const study::StudyPass& pass : study.passes) {
+    if (pass.name != timing.pass || !pass.sweepPoint.empty()) continue;
+    for (const study::StudyPassRun& run : pass.runs) {
+      double microseconds = 0.0;
+      for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) {
+        const sim::DispatchReport& report = study.dispatches[i].report;
+        const bool counted = timing.dispatches.empty() ||
+                             std::find(timing.dispatches.begin(), timing.dispatches.end(), report.name) != timing.dispatches.end();
+        if (counted) microseconds += report.time.totalMicroseconds;
+      }
+      const double ms = microseconds / 1000.0 * kSeedPixels / pixels;
+      best = best ? std::min(*best, ms) : ms;
+    }
+  }
+  return best;
+}
+
+ReportSection SeedTimingSection(const study::Study& study) {
+  ReportSection section{"Sequence: seed 001's temporal timings beside aasim's estimates", {}, {}, {}, {}};
+  section.paragraphs.push_back(
+      "Seed 001's PS4 table at 1080p next to the timing model's estimate (docs/timing-model.md, not a measurement) "
+      "of the dispatches of aasim's passes that do the same work, on the sequence's last frame, scaled to 1080p by "
+      "pixel count. TFQ + TAA is the hraa pass with its temporal FLIPQUAD on (its default). The mapping and why "
+      "TFQ is estimated above the seed: docs/temporal.md \"Cost\".");
+  ReportTable table{"Seed 001 (PS4) vs aasim estimate, ms at 1080p", {"item", "seed ms", "aasim pass", "dispatches", "estimate ms"}, {}};
+  for (const SeedTiming& timing : SeedTimings()) {
+    std::string dispatches;
+    for (const std::string_view name : timing.dispatches) dispatches += (dispatches.empty() ? "" : ", ") + std::string(name);
+    const std::optional<double> estimate = Estimated1080pMs(study, timing);
+    table.rows.push_back({timing.item, FormatFixed(timing.milliseconds, 2), timing.pass,
+                          dispatches.empty() ? "all" : dispatches, estimate ? FormatFixed(*estimate, 2) : "not run"});
+  }
+  section.tables.push_back(std::move(table));
+  return section;
+}
+
 }  // namespace
+
+nlohmann::ordered_json SeedTimingJson(const study::Study& study) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const SeedTiming& timing : SeedTimings()) {
+    const std::optional<double> estimate = Estimated1080pMs(study, timing);
+    rows.push_back({{"item", timing.item},
+                    {"seed_ps4_1080p_ms", timing.milliseconds},
+                    {"pass", timing.pass},
+                    {"dispatches", timing.dispatches.empty() ? nlohmann::ordered_json("all")
+                                                             : nlohmann::ordered_json(std::vector<std::string>(
+                                                                   timing.dispatches.begin(), timing.dispatches.end()))},
+                    {"estimated_1080p_ms", estimate ? nlohmann::ordered_json(*estimate) : nlohmann::ordered_json(nullptr)}});
+  }
+  return rows;
+}
 
 std::vector<ReportSection> SequenceSections(const study::Study& study, const SequenceImages& images) {
   if (!study.sequence) return {};
   return {SummarySection(*study.sequence), ChartsSection(*study.sequence), StripSection(*study.sequence, images),
-          CountersSection(study)};
+          CountersSection(study), SeedTimingSection(study)};
 }
 
 }  // namespace cli

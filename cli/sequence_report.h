@@ -43,6 +43,8 @@ class SequenceImages {
 inline constexpr const char* kGroundTruthSequenceFolder = "sequence/ground-truth";
 
 nlohmann::ordered_json SequenceJson(const study::StudySequence& sequence);
+// Seed 001's temporal timing rows with aasim's estimates (report.json sequence.seed_001_timings).
+nlohmann::ordered_json SeedTimingJson(const study::Study& study);
 std::vector<ReportSection> SequenceSections(const study::Study& study, const SequenceImages& images);
 
 }  // namespace cli

@@ -696,7 +696,10 @@ nlohmann::ordered_json StudyJson(const Study& study, const RunCommandOptions& op
   for (const StudyFrame& frame : study.frames) json["frames"].push_back(FrameJson(frame, options));
   for (const StudyPass& pass : study.passes) json["passes"].push_back(PassJson(study, pass));
   json["sample_patterns"] = PatternErrorJson();
-  if (study.sequence) json["sequence"] = SequenceJson(*study.sequence);
+  if (study.sequence) {
+    json["sequence"] = SequenceJson(*study.sequence);
+    json["sequence"]["seed_001_timings"] = SeedTimingJson(study);
+  }
   return json;
 }
 

@@ -75,6 +75,10 @@ TEST_F(CliSequenceTest, EveryTechniqueHasEveryFrameAndTheJsonAgrees) {
     if (pass["name"] == "taa-ue4") taa = pass["input_frame"] == "frame " + std::to_string(kFrames - 1) + " halton8 1S/1Z/1F";
   }
   EXPECT_TRUE(taa);
+  // Seed 001's temporal timing rows: hraa and tfq did not run here, so no estimate.
+  ASSERT_EQ(sequence["seed_001_timings"].size(), 4u);
+  EXPECT_EQ(sequence["seed_001_timings"][1]["seed_ps4_1080p_ms"], 0.2);
+  EXPECT_TRUE(sequence["seed_001_timings"][1]["estimated_1080p_ms"].is_null());
   for (int k = 0; k < kFrames; ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "frame-%03d.png", k);
