@@ -390,12 +390,14 @@ CLI::App* AddRunCommand(CLI::App& app, RunCommandOptions& options) {
 
 // A pass reading an EQAA surface of S samples (SMAA S2x) runs on the first mode with S samples.
 // `--post all` leaves out the passes no mode feeds (said in --help); a pass named explicitly is
-// an error.
+// an error. In a multi-frame run a temporal pass runs on the sequence only, whose jitter
+// schedule draws the samples it reads.
 void KeepPassesTheModesFeed(RunCommandOptions& options) {
   std::vector<passes::PassConfig> fed;
   for (passes::PassConfig& pass : options.postPasses) {
     const int samples = pass.Info().eqaaSamples;
-    const bool feeds = samples == 0 || std::any_of(options.eqaaModes.begin(), options.eqaaModes.end(),
+    const bool sequenceOnly = options.frames > 1 && pass.Info().temporal;
+    const bool feeds = samples == 0 || sequenceOnly || std::any_of(options.eqaaModes.begin(), options.eqaaModes.end(),
                                                    [&](const fmask::EqaaConfig& mode) {
                                                      return mode.coverageSamples == samples;
                                                    });

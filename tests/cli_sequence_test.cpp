@@ -30,7 +30,7 @@ constexpr int kFrames = 3;
 
 std::vector<std::string> SequenceRun(const fs::path& out) {
   return {"run",      "--scene",    "builtin:wheel", "--width",   "96",       "--height",   "64",
-          "--modes",  "1S/1Z/1F",   "--resolves",    "none",      "--post",   "copy,smaa,taa-ue4", "--sequence-post", "all",  "--gt-samples",
+          "--modes",  "1S/1Z/1F",   "--resolves",    "none",      "--post",   "copy,smaa,taa-ue4,smaa-4x", "--sequence-post", "all",  "--gt-samples",
           "4",        "--no-cache", "--progress",    "never",     "--frames", std::to_string(kFrames),
           "--camera-path", "orbit", "--out",         out.string()};
 }
@@ -63,8 +63,11 @@ TEST_F(CliSequenceTest, EveryTechniqueHasEveryFrameAndTheJsonAgrees) {
   EXPECT_EQ(sequence["frames"], kFrames);
   EXPECT_EQ(sequence["camera_path"], "orbit");
   EXPECT_EQ(report["configuration"]["frames"], kFrames);
-  ASSERT_EQ(sequence["groups"].size(), 2u);
+  // smaa-4x reads a 2-sample surface: no 1S mode feeds it, but its schedule draws 2S/2Z/2F.
+  ASSERT_EQ(sequence["groups"].size(), 3u);
   EXPECT_EQ(sequence["groups"][1]["schedule"], "halton8");
+  EXPECT_EQ(sequence["groups"][2]["schedule"], "4x");
+  EXPECT_EQ(sequence["groups"][2]["mode"], "2S/2Z/2F");
   ASSERT_EQ(sequence["groups"][1]["tracks"].size(), 2u);  // frames, taa-ue4
   const nlohmann::json& group = sequence["groups"][0];
   EXPECT_EQ(group["schedule"], "none");
