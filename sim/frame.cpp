@@ -27,6 +27,9 @@ void CheckPatternFits(const raster::SamplePattern& pattern, const fmask::EqaaCon
 raster::DepthSurfaceConfig DepthConfig(const FrameSettings& settings) {
   fmask::ValidateEqaaConfig(settings.eqaa);
   CheckPatternFits(settings.pattern, settings.eqaa);
+  if (settings.sampleRateShading && settings.eqaa.coverageSamples != 1) {
+    throw std::invalid_argument("sample-rate shading needs a one-sample surface, not " + fmask::EqaaName(settings.eqaa));
+  }
   raster::DepthSurfaceConfig config;
   config.width = settings.width;
   config.height = settings.height;
@@ -200,12 +203,13 @@ DispatchReport FramePipeline::Render(const FrameGeometry& submitted, const Frame
   const glm::vec3 towardsLight = glm::normalize(settings_.towardsLight);
   const int width = settings_.width, height = settings_.height;
   const float ambient = settings_.ambient;
+  const bool sampleRate = settings_.sampleRateShading;
 
   auto material = [&](PixelLane& lane) -> fmask::Colour {
     const std::uint32_t primitive = lane.quad->primitiveId;
     const std::span<const std::uint32_t> corners = geometry.indices.subspan(3 * std::size_t{primitive}, 3);
     // Centroid interpolation keeps partially covered pixels from extrapolating the normal.
-    const std::array<float, 3> b = lane.CentroidBarycentrics();
+    const std::array<float, 3> b = sampleRate ? lane.SampleBarycentrics(0) : lane.CentroidBarycentrics();
     glm::vec3 normal = glm::normalize(Interpolate(geometry.normals, corners, b));
     if (!lane.quad->frontFacing) normal = -normal;
     const std::uint32_t object = geometry.objectIds[primitive];

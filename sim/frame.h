@@ -60,6 +60,12 @@ struct FrameSettings {
   // writes on, no pixel shader, no colour block) before the material draw, which then tests
   // EQUAL with depth writes off, so only the visible surface reaches the colour block.
   bool depthPrepass = false;
+  // One-sample surfaces only: the material kernel interpolates every attribute at the sample's
+  // position instead of the centroid (which is the pixel centre for a covered 1S pixel), as a
+  // jittered projection matrix or HLSL's `sample` modifier does (seed 001 "Temporal FLIPQUAD: In
+  // Practice": "UVs need to be interpolated at SAMPLE positions"). Jitter schedules turn it on so
+  // that textures, not only edges, are sampled at the jittered positions.
+  bool sampleRateShading = false;
   WaveFlush flush = WaveFlush::MixPrimitives;
   raster::CullMode cull = raster::CullMode::Back;
   glm::vec3 towardsLight{0.4f, 0.8f, 0.45f};  // world space; normalised on use

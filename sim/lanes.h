@@ -144,6 +144,8 @@ struct PixelLane : LaneBase {
   // centroid location (hw-facts §4.2) for attributes that must not extrapolate.
   std::array<float, 3> Barycentrics() const;
   std::array<float, 3> CentroidBarycentrics() const;
+  // At sample `sample`'s position of the pattern (HLSL's `sample` interpolation modifier).
+  std::array<float, 3> SampleBarycentrics(int sample) const;
 
   // Every lane of the quad, helper flag included, is set up before any of them runs, so a
   // neighbour read here is never stale.

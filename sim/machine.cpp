@@ -22,6 +22,11 @@ std::array<float, 3> PixelLane::CentroidBarycentrics() const {
   return raster::PerspectiveBarycentrics(*triangle, at[0], at[1]);
 }
 
+std::array<float, 3> PixelLane::SampleBarycentrics(int sample) const {
+  const std::array<double, 2> at = raster::SamplePosition(x, y, *pattern, sample);
+  return raster::PerspectiveBarycentrics(*triangle, at[0], at[1]);
+}
+
 std::byte* ComputeLane::LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
   if (byteOffset + bytes > chunk->lds.size()) {
     throw KernelError(chunk->dispatch->name + ": LDS access at byte " + std::to_string(byteOffset) +

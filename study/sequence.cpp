@@ -7,8 +7,11 @@
 
 namespace study {
 namespace {
+// A one-sample schedule that moves the sample stands for a jittered projection: every attribute
+// follows the sample (sim::FrameSettings::sampleRateShading), not only coverage.
 sim::FrameSettings WithPattern(sim::FrameSettings settings, const raster::JitterSchedule& schedule) {
   settings.pattern = schedule.At(0);
+  settings.sampleRateShading = schedule.Samples() == 1 && schedule.Name() != "none";
   return settings;
 }
 }  // namespace

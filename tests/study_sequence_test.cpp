@@ -101,6 +101,62 @@ TEST(SequenceRenderer, PanVelocityIsThePathsPixelsPerFrame) {
   EXPECT_NEAR(inputs.velocity->At(kWidth / 2, kHeight / 2).x, -1.0f, 1e-3f);
 }
 
+// A one-sample pattern with sample-rate shading is a jittered projection: the frame equals the
+// scene moved by minus the jitter and drawn at pixel centres, textures included, up to the two
+// routes' different vertex snapping (1/256 px); compared on the zone-plate panel (about a texel a
+// pixel), not on the floor, whose texels near the horizon are far smaller than the snapping step.
+// With centroid shading the texture does not follow the jitter.
+TEST(SampleRateShading, AMovedSampleShadesLikeAJitteredProjection) {
+  const Loaded plane = Load("builtin:textured-plane");
+  const raster::SamplePattern jittered = raster::MakeBuiltinPattern("halton:2", 1);
+  const raster::SampleOffset offset = jittered.Offset(0, 0);
+  ASSERT_NE(offset, (raster::SampleOffset{0, 0}));
+  FrameScene moved = plane.frame;
+  for (glm::vec4& p : moved.clip.positions) {
+    p.x -= 2.0f * (static_cast<float>(offset.x) / 16.0f) / kWidth * p.w;
+    p.y += 2.0f * (static_cast<float>(offset.y) / 16.0f) / kHeight * p.w;
+  }
+  sim::Machine machine(sim::GpuConfigByName("ps4-class"));
+  auto render = [&](const FrameScene& scene, const raster::SamplePattern& pattern, bool sampleRate) {
+    sim::FrameSettings settings = Settings();
+    settings.pattern = pattern;
+    settings.sampleRateShading = sampleRate;
+    sim::FramePipeline pipeline(machine, settings);
+    pipeline.Render(scene.Geometry());
+    return std::make_pair(std::vector<glm::vec4>(pipeline.Colour().Texels().begin(), pipeline.Colour().Texels().end()),
+                          std::vector<std::uint32_t>(pipeline.ObjectId().Texels().begin(), pipeline.ObjectId().Texels().end()));
+  };
+  const auto reference = render(moved, raster::MakeBuiltinPattern("centre", 1), false);
+  const auto sampleRate = render(plane.frame, jittered, true);
+  const auto centroid = render(plane.frame, jittered, false);
+  float worstSampleRate = 0.0f, worstCentroid = 0.0f;
+  for (int y = 1; y + 1 < kHeight; ++y) {
+    for (int x = 1; x + 1 < kWidth; ++x) {
+      // Interior pixels: the same object in the pixel and its 8 neighbours in both routes.
+      const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+      bool interior = true;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const std::size_t j = std::size_t(y + dy) * kWidth + std::size_t(x + dx);
+          interior = interior && reference.second[j] == reference.second[i] && sampleRate.second[j] == reference.second[i];
+        }
+      }
+      if (!interior || reference.second[i] != 1) continue;  // the zone-plate panel
+      for (int c = 0; c < 3; ++c) {
+        worstSampleRate = std::max(worstSampleRate, std::abs(sampleRate.first[i][c] - reference.first[i][c]));
+        worstCentroid = std::max(worstCentroid, std::abs(centroid.first[i][c] - reference.first[i][c]));
+      }
+    }
+  }
+  EXPECT_LT(worstSampleRate, 2e-3f);
+  EXPECT_GT(worstCentroid, 2e-2f);
+  sim::FrameSettings multi = Settings();
+  multi.eqaa = {2, 2, 2};
+  multi.pattern = raster::MakeBuiltinPattern("standard", 2);
+  multi.sampleRateShading = true;
+  EXPECT_THROW(sim::FramePipeline(machine, multi), std::invalid_argument);
+}
+
 // With seed 000's half-resolution 8-bit buffer, passes read decoded velocities and the pack is a
 // dispatch of the frame.
 TEST(SequenceRenderer, PackedVelocityBuffersReachThePasses) {
