@@ -508,7 +508,7 @@ TEST_F(CliPostTest, ASequenceRunsFrameByFrameAndWritesEachFramesOutputs) {
   const nlohmann::json report = Report(scratch_ / "out");
   ASSERT_EQ(report["frames"].size(), 3u);
   for (int k = 0; k < 3; ++k) {
-    char folder[16];
+    char folder[32];
     std::snprintf(folder, sizeof folder, "frame-%03d", k);
     EXPECT_EQ(ReadPng(scratch_ / "out" / folder / "output.png").pixels, ShiftedPng(k).pixels) << folder;
     const nlohmann::json& frame = report["frames"][std::size_t(k)];
