@@ -1,13 +1,15 @@
-// The multi-frame part of the study (see study_steps.h): every configured pass followed over a
-// sequence drawn with the jitter schedule it is built for, scored frame by frame against a
-// jitter-free ground truth of the same frame, with flicker, ghosting and convergence.
+// The multi-frame part of the study (see study_steps.h): the passes SequenceConfig::followed names
+// (the temporal ones by default) followed over a sequence drawn with the jitter schedule each is
+// built for, scored frame by frame against a jitter-free ground truth of the same frame, with
+// flicker, ghosting and convergence.
 //
 // Techniques are grouped by the frames they read: one group per (schedule, mode). Spatial passes
 // read the run's first frame mode unjittered ("none"); a temporal pass reads its PassInfo::jitter
-// schedule (or the run's override) drawn as S/S/S with the schedule's S. Every group draws its
-// frames once and every pass of the group reads them, one instance per strategy for the whole
-// sequence. Reports of the last frame join Study::dispatches (a temporal pass's study entry is
-// its last frame); earlier frames are summarised into SequenceFrameCounters and dropped.
+// schedule (or the run's override) drawn as S/S/S with the schedule's S. Every frame's ground
+// truth is made first; then the groups run one at a time, each drawing its frames once for all its
+// passes, so only one group's pipeline and temporal passes' targets exist at once. Reports of the
+// last frame join Study::dispatches (a temporal pass's study entry is its last frame); earlier
+// frames are summarised into SequenceFrameCounters and dropped.
 
 #include <algorithm>
 #include <cmath>
