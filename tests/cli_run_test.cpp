@@ -276,7 +276,7 @@ TEST_F(CliRunTest, SameCountersQualityAndImagesWithOneThread) {
 
 // The EQAA study's options: a bad name, a repeated one, the run's own policy, a table size out of
 // range are usage errors (exit 2, one line naming the option) that create no output.
-TEST(CliRun, BadResolveAndPolicyListsAreUsageErrors) {
+TEST(CliRun, BadOptionListsAndCombinationsAreUsageErrors) {
   const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_run_lists_" + std::to_string(::getpid()));
   fs::create_directories(scratch);
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
@@ -288,7 +288,16 @@ TEST(CliRun, BadResolveAndPolicyListsAreUsageErrors) {
       {{"--lut-configurations", "9999999"}, "--lut-configurations"},
       {{"--post", "smaa", "--sweep", "fxaa:threshold=0.1"}, "--sweep fxaa:threshold=0.1: fxaa is not a pass of the run"},
       {{"--sweep", "smaa:threshold=0.1,x"}, "--sweep smaa:threshold=0.1,x: 'x' is not a finite decimal"},
-      {{"--sweep", "smaa"}, "--sweep smaa: expected PASS:SETTING=V1,V2,..."}};
+      {{"--sweep", "smaa"}, "--sweep smaa: expected PASS:SETTING=V1,V2,..."},
+      {{"--jitter", "halton8"}, "--jitter: only a multi-frame run uses it"},
+      {{"--camera-path", "orbit"}, "--camera-path: only a multi-frame run uses it"},
+      {{"--sequence-post", "all"}, "--sequence-post: only a multi-frame run uses it"},
+      {{"--frames", "0"}, "--frames"},
+      {{"--frames", "3", "--camera-path", "spiral"}, "--camera-path"},
+      {{"--frames", "3", "--jitter", "halton9"}, "--jitter"},
+      {{"--frames", "3", "--fps", "0"}, "--fps"},
+      {{"--frames", "3", "--post", "smaa", "--sequence-post", "fxaa"},
+       "--sequence-post: fxaa is not one of the run's --post passes"}};
   for (const auto& [extra, message] : cases) {
     std::vector<std::string> args = {"run", "--quick", "--out", (scratch / "out").string()};
     args.insert(args.end(), extra.begin(), extra.end());

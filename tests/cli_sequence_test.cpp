@@ -1,13 +1,12 @@
 // `aasim run --frames N`: the sequence part of the main job end to end on a small frame: every
 // frame image of every technique and of the ground truth, report.json's sequence agreeing with
-// them, the report's sequence sections loading in headless Chromium, and the sequence options
-// refused with one line and no output when they make no sense.
+// them, and the report's sequence sections loading in headless Chromium (the sequence options'
+// usage errors are CliRun.BadOptionListsAndCombinationsAreUsageErrors).
 
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -110,30 +109,6 @@ TEST_F(CliSequenceTest, ReportShowsTheSequenceAndLoadsInHeadlessChromium) {
   EXPECT_TRUE(check.consoleErrors.empty()) << check.consoleErrors.front();
   EXPECT_TRUE(check.loadErrors.empty()) << check.loadErrors.front();
   EXPECT_EQ(check.imagesLoaded, check.imagesTotal);
-}
-
-TEST(CliSequence, SequenceOptionsThatMakeNoSenseAreOneLineUsageErrors) {
-  const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_sequence_bad_" + std::to_string(::getpid()));
-  fs::create_directories(scratch);
-  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-      {{"--jitter", "halton8"}, "--jitter: only a multi-frame run uses it"},
-      {{"--camera-path", "orbit"}, "--camera-path: only a multi-frame run uses it"},
-      {{"--frames", "0"}, "--frames"},
-      {{"--frames", "3", "--camera-path", "spiral"}, "--camera-path"},
-      {{"--frames", "3", "--jitter", "halton9"}, "--jitter"},
-      {{"--frames", "3", "--fps", "0"}, "--fps"},
-      {{"--frames", "3", "--post", "smaa", "--sequence-post", "fxaa"}, "--sequence-post: fxaa is not one of the run's --post passes"},
-      {{"--sequence-post", "all"}, "--sequence-post: only a multi-frame run uses it"}};
-  for (const auto& [extra, message] : cases) {
-    std::vector<std::string> args = {"run", "--quick", "--out", (scratch / "out").string()};
-    args.insert(args.end(), extra.begin(), extra.end());
-    const CommandResult run = RunAasim(args, scratch);
-    EXPECT_EQ(run.exitCode, 2) << extra.front();
-    EXPECT_NE(run.err.find(message), std::string::npos) << run.err;
-    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-    EXPECT_FALSE(fs::exists(scratch / "out")) << extra.front();
-  }
-  fs::remove_all(scratch);
 }
 
 }  // namespace
