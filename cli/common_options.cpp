@@ -53,6 +53,14 @@ void AddPatternOption(CLI::App& command, std::string& pattern) {
       ->capture_default_str();
 }
 
+void AddFramesPerSecondOption(CLI::App& command, double& framesPerSecond) {
+  command
+      .add_option("--fps", framesPerSecond,
+                  "Frame rate of the sequence: frame-rate-aware passes blend with alpha = exp(-dt / tau), dt = 1 / fps")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+}
+
 void AddThreadsOption(CLI::App& command, int& threads) {
   threads = tbb::info::default_concurrency();
   command.add_option("--threads", threads, "Worker threads [default: all cores]")

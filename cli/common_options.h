@@ -39,6 +39,8 @@ void AddViewportOptions(CLI::App& command, std::string& scene, int& width, int& 
 void AddPatternOption(CLI::App& command, std::string& pattern);
 // --threads N (1..1024); sets `threads` to every core first, which is the default.
 void AddThreadsOption(CLI::App& command, int& threads);
+// --fps: the frame rate of a sequence, 1..1000; passes read dt = 1 / fps.
+void AddFramesPerSecondOption(CLI::App& command, double& framesPerSecond);
 
 // Makes every integer option of `app` and its subcommands read decimal only: CLI11 converts with
 // base 0, so `--width 0064` would be octal 52 and `0x40` hexadecimal. Leading zeros are dropped

@@ -74,10 +74,7 @@ void AddImageOptions(CLI::App& command, PostCommandOptions& options) {
                   "The jitter schedule the frames were rendered with (docs/temporal.md), given to the pass as "
                   "each frame's pattern and jitter [default: the pass's own schedule]")
       ->check(CLI::IsMember(raster::JitterScheduleNames()));
-  command
-      .add_option("--fps", options.framesPerSecond, "Frame rate of the sequence (dt = 1/F for frame-rate-aware blends)")
-      ->check(CLI::Range(1.0, 1000.0))
-      ->capture_default_str();
+  AddFramesPerSecondOption(command, options.framesPerSecond);
 }
 
 void AddRunOptions(CLI::App& command, PostCommandOptions& options) {

@@ -171,11 +171,7 @@ void AddSequenceOptions(CLI::App& command, RunCommandOptions& options) {
                   "Jitter schedule for every temporal pass instead of its own: " +
                       JoinNames(raster::JitterScheduleNames()) + " (raster/jitter_schedule.h)")
       ->check(CLI::IsMember(raster::JitterScheduleNames()));
-  command
-      .add_option("--fps", options.framesPerSecond,
-                  "Simulated frame rate: frame-rate-aware passes blend with alpha = exp(-dt / tau), dt = 1 / fps")
-      ->check(CLI::Range(1.0, 1000.0))
-      ->capture_default_str();
+  AddFramesPerSecondOption(command, options.framesPerSecond);
   command
       .add_option("--sequence-post", options.sequencePost,
                   "The --post passes followed over the frames: temporal (every temporal pass), all, or a "
