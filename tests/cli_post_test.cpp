@@ -541,6 +541,19 @@ TEST_F(CliPostTest, ASequenceRefusesMismatchedFilesWithOneLineAndNoOutput) {
       << sizes.err;
   EXPECT_EQ(std::count(sizes.err.begin(), sizes.err.end(), '\n'), 1) << sizes.err;
   EXPECT_FALSE(fs::exists(scratch_ / "out"));
+  // A velocity file without R and G (or X and Y) names its channels.
+  Planes depthOnly;
+  depthOnly["Z"].assign(std::size_t(kWidth) * kHeight, 0.5f);
+  const fs::path z = WriteExr(scratch_ / "z.exr", depthOnly);
+  const CommandResult channels = RunAasim({"post", "--pass", "copy", "--input", a.string(), "--input", a.string(),
+                                           "--velocity", z.string(), "--velocity", z.string(), "--out",
+                                           (scratch_ / "out").string()},
+                                          scratch_);
+  EXPECT_EQ(channels.exitCode, 1);
+  EXPECT_NE(channels.err.find(z.string() + ": OpenEXR channels Z; velocity is read from channels R and G, or X and Y"),
+            std::string::npos)
+      << channels.err;
+  EXPECT_FALSE(fs::exists(scratch_ / "out"));
 }
 
 }  // namespace

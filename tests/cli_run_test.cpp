@@ -296,6 +296,7 @@ TEST(CliRun, BadOptionListsAndCombinationsAreUsageErrors) {
       {{"--frames", "3", "--camera-path", "spiral"}, "--camera-path"},
       {{"--frames", "3", "--jitter", "halton9"}, "--jitter"},
       {{"--frames", "3", "--fps", "0"}, "--fps"},
+      {{"--frames", "3", "--velocity-buffer", "rg16"}, "--velocity-buffer"},
       {{"--frames", "3", "--post", "smaa", "--sequence-post", "fxaa"},
        "--sequence-post: fxaa is not one of the run's --post passes"}};
   for (const auto& [extra, message] : cases) {
