@@ -40,7 +40,13 @@ struct BenchOptions {
   int frames = 3;
   int threads = tbb::info::default_concurrency();
   std::string json;
+  std::vector<std::string> passes;  // empty: every registered pass
+  bool dispatchTimes = false;
 };
+
+bool Selected(const BenchOptions& options, std::string_view name) {
+  return options.passes.empty() || std::ranges::find(options.passes, name) != options.passes.end();
+}
 
 // One run of a pass under one strategy.
 struct StrategyRun {
@@ -105,8 +111,8 @@ sim::FrameSettings SettingsFor(int eqaaSamples) {
   return settings;
 }
 
-FrameRun RunFrame(const sim::FrameGeometry& geometry, sim::Machine& machine, sim::FramePipeline& pipeline,
-                  PassInstances& instances) {
+FrameRun RunFrame(const BenchOptions& options, const sim::FrameGeometry& geometry, sim::Machine& machine,
+                  sim::FramePipeline& pipeline, PassInstances& instances) {
   FrameRun run;
   machine.ClearReports();
   const auto start = std::chrono::steady_clock::now();
@@ -116,6 +122,10 @@ FrameRun RunFrame(const sim::FrameGeometry& geometry, sim::Machine& machine, sim
   for (std::size_t p = 0; p < registered.size(); ++p) {
     const passes::PassInfo& info = registered[p].info();
     const int samples = info.eqaaSamples;
+    if (!Selected(options, info.name)) {
+      run.passes.emplace_back();
+      continue;
+    }
     if (samples == 0 || samples == pipeline.Settings().eqaa.coverageSamples) {
       run.passes.push_back(RunPass(info, instances[p], machine, pipeline));
       continue;
@@ -149,12 +159,13 @@ bool StrategiesIdentical(const std::vector<StrategyRun>& runs) {
   return true;
 }
 
-FrameRun CaptureFrame(const sim::FrameGeometry& geometry, const sim::GpuConfig& gpu, int threads) {
+FrameRun CaptureFrame(const BenchOptions& options, const sim::FrameGeometry& geometry, const sim::GpuConfig& gpu,
+                      int threads) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   sim::Machine machine(gpu);
   sim::FramePipeline pipeline(machine, sim::FrameSettings{});
   PassInstances fresh = MakeInstances();
-  return RunFrame(geometry, machine, pipeline, fresh);
+  return RunFrame(options, geometry, machine, pipeline, fresh);
 }
 
 const sim::DispatchReport* Find(const FrameRun& frame, const StrategyRun& run, std::string_view name) {
@@ -194,6 +205,18 @@ void PrintComparison(const FrameRun& frame, const passes::PassInfo& info, const 
   row("estimated us", left->time.totalMicroseconds, right->time.totalMicroseconds, " %14.1f");
 }
 
+// Host time of each dispatch of the last timed frame: where a pass's time goes, the rest of its
+// time being host work outside dispatches.
+void PrintDispatchTimes(const FrameRun& frame, const StrategyRun& run) {
+  double inDispatches = 0.0;
+  for (std::size_t i = run.firstDispatch; i < run.endDispatch; ++i) {
+    const sim::DispatchReport& report = frame.reports[i];
+    std::printf("    %-40s %8.1f ms (last frame)\n", report.name.c_str(), report.hostMilliseconds);
+    inDispatches += report.hostMilliseconds;
+  }
+  std::printf("    %-40s %8.1f ms (last frame)\n", "outside dispatches", run.ms - inDispatches);
+}
+
 int RunBench(const BenchOptions& options) {
   std::ofstream jsonFile;
   if (!options.json.empty()) {
@@ -215,10 +238,10 @@ int RunBench(const BenchOptions& options) {
     sim::Machine machine(gpu);
     sim::FramePipeline pipeline(machine, sim::FrameSettings{});
     PassInstances instances = MakeInstances();
-    const FrameRun warmUp = RunFrame(geometry, machine, pipeline, instances);
+    const FrameRun warmUp = RunFrame(options, geometry, machine, pipeline, instances);
     std::printf("warm-up frame: %.1f ms (not counted)\n", warmUp.frameMs);
     for (int frame = 0; frame < options.frames; ++frame) {
-      last = RunFrame(geometry, machine, pipeline, instances);
+      last = RunFrame(options, geometry, machine, pipeline, instances);
       frameMs.push_back(last.frameMs);
       passMs.resize(last.passes.size());
       for (std::size_t p = 0; p < last.passes.size(); ++p) {
@@ -227,7 +250,7 @@ int RunBench(const BenchOptions& options) {
       }
     }
   }
-  const bool deterministic = SameRun(CaptureFrame(geometry, gpu, 1), last);
+  const bool deterministic = SameRun(CaptureFrame(options, geometry, gpu, 1), last);
   bool identicalImages = true;
   const sim::FrameSettings settings;
   std::printf("aasim frame bench: %s (%zu triangles), %dx%d, %s, %s, %d threads, median of %d frames\n",
@@ -237,6 +260,7 @@ int RunBench(const BenchOptions& options) {
   nlohmann::ordered_json passesJson = nlohmann::ordered_json::array();
   for (std::size_t p = 0; p < last.passes.size(); ++p) {
     const passes::PassInfo& info = passes::AllPasses()[p].info();
+    if (last.passes[p].empty()) continue;
     const bool identical = StrategiesIdentical(last.passes[p]);
     identicalImages = identicalImages && identical;
     nlohmann::ordered_json strategies = nlohmann::ordered_json::object();
@@ -245,6 +269,7 @@ int RunBench(const BenchOptions& options) {
       const std::size_t dispatches = last.passes[p][s].endDispatch - last.passes[p][s].firstDispatch;
       std::printf("  %s pass [%s] (%zu dispatches): %8.1f ms\n", std::string(info.name).c_str(), strategy.c_str(),
                   dispatches, bench::Median(passMs[p][s]));
+      if (options.dispatchTimes) PrintDispatchTimes(last, last.passes[p][s]);
       strategies[strategy + "_ms"] = passMs[p][s];
     }
     PrintComparison(last, info, last.passes[p]);
@@ -291,6 +316,18 @@ int main(int argc, char** argv) {
   app.add_option("--threads", options.threads, "Worker threads for the timed frames [default: all cores]")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
+  app.add_option("--pass", options.passes, "Time only this registered pass (repeatable) [default: every pass]")
+      ->type_name("NAME")
+      ->check([](const std::string& name) {
+        try {
+          passes::PassByName(name);
+          return std::string();
+        } catch (const std::exception& error) {
+          return std::string(error.what());
+        }
+      });
+  app.add_flag("--dispatch-times", options.dispatchTimes,
+               "Also print each dispatch's host time in the last timed frame, and the pass's time outside them");
   app.add_option("--json", options.json, "Also write the results as JSON to FILE")->type_name("FILE");
   return bench::ParseAndRun(app, argc, argv, [&] { return RunBench(options); });
 }

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "raster/limits.h"
@@ -92,30 +93,11 @@ float FromSmallFloat(std::uint32_t bits, int fractionBits, bool hasSign) {
 
 constexpr int kHalfFraction = 10, kFloat11Fraction = 6, kFloat10Fraction = 5;
 
-// The sRGB curve of D3D11 §3.2.3.7 evaluated in double and rounded to float once, for each
-// code: the nearest float to the exact curve (D3D11 §3.2.3.2 asks conversions to be exact). A
-// table because a bilinear sRGB sample decodes 16 channels; pow per channel would dominate.
-const std::array<float, 256>& SrgbDecodeTable() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int k = 0; k < 256; ++k) {
-      const double c = k / 255.0;
-      t[static_cast<std::size_t>(k)] = static_cast<float>(SrgbDecodeCurve(c));
-    }
-    return t;
-  }();
-  return table;
-}
-
 }  // namespace
 
 int BytesPerTexel(Format format) { return Info(format).bytes; }
 int Channels(Format format) { return Info(format).channels; }
 std::string_view FormatName(Format format) { return Info(format).name; }
-
-bool IsUnorm8(Format format) {
-  return format == Format::R8Unorm || format == Format::RG8Unorm || format == Format::RGBA8Unorm;
-}
 
 bool ViewCompatible(Format resource, Format view) {
   const auto rgba8 = [](Format f) { return f == Format::RGBA8Unorm || f == Format::RGBA8Srgb; };
@@ -131,57 +113,46 @@ std::uint8_t FloatToSrgb8ByCurve(float linear) {
   return static_cast<std::uint8_t>(std::floor(encoded * 255.0 + 0.5));
 }
 
-namespace {
-// thresholds[k - 1] = the smallest float in [0, 1] the curve encodes to k or more (the curve is
-// monotonic, so a bisection over float bit patterns finds it; non-negative floats order as
-// their bits do).
-const std::array<float, 255>& SrgbEncodeThresholds() {
-  static const std::array<float, 255> thresholds = [] {
-    std::array<float, 255> t{};
-    for (int k = 1; k <= 255; ++k) {
-      std::uint32_t low = 0, high = std::bit_cast<std::uint32_t>(1.0f);  // code(low) < k <= code(high)
-      while (high - low > 1) {
-        const std::uint32_t mid = low + (high - low) / 2;
-        (FloatToSrgb8ByCurve(std::bit_cast<float>(mid)) >= k ? high : low) = mid;
-      }
-      t[static_cast<std::size_t>(k - 1)] = std::bit_cast<float>(high);
+namespace detail {
+
+SrgbTables BuildSrgbTables() {
+  SrgbTables tables;
+  // The sRGB curve of D3D11 §3.2.3.7 evaluated in double and rounded to float once, for each
+  // code: the nearest float to the exact curve (D3D11 §3.2.3.2 asks conversions to be exact).
+  for (int k = 0; k < 256; ++k) {
+    tables.decode[static_cast<std::size_t>(k)] = static_cast<float>(SrgbDecodeCurve(k / 255.0));
+  }
+  // thresholds[k - 1] = the smallest float in [0, 1] the curve encodes to k or more (the curve is
+  // monotonic, so a bisection over float bit patterns finds it; non-negative floats order as
+  // their bits do).
+  for (int k = 1; k <= 255; ++k) {
+    std::uint32_t low = 0, high = std::bit_cast<std::uint32_t>(1.0f);  // code(low) < k <= code(high)
+    while (high - low > 1) {
+      const std::uint32_t mid = low + (high - low) / 2;
+      (FloatToSrgb8ByCurve(std::bit_cast<float>(mid)) >= k ? high : low) = mid;
     }
-    return t;
-  }();
-  return thresholds;
-}
-}  // namespace
-
-namespace {
-// Floats in [0, 1] grouped by their top bits (2^15 ulps per bucket): the code of each bucket's
-// smallest float. A bucket is narrower than the gap between two thresholds except near the top,
-// so the code of a float is its bucket's plus at most a couple of threshold steps.
-constexpr int kSrgbBucketShift = 15;
-const std::vector<std::uint8_t>& SrgbEncodeBuckets() {
-  static const std::vector<std::uint8_t> buckets = [] {
-    const std::array<float, 255>& t = SrgbEncodeThresholds();
-    const std::uint32_t count = (std::bit_cast<std::uint32_t>(1.0f) >> kSrgbBucketShift) + 1;
-    std::vector<std::uint8_t> b(count);
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const float first = std::bit_cast<float>(i << kSrgbBucketShift);
-      b[i] = static_cast<std::uint8_t>(std::upper_bound(t.begin(), t.end(), first) - t.begin());
+    tables.thresholds[static_cast<std::size_t>(k - 1)] = std::bit_cast<float>(high);
+  }
+  tables.thresholds[255] = 2.0f;
+  // Each bucket's code is that of its smallest float.
+  const std::uint32_t count = (std::bit_cast<std::uint32_t>(1.0f) >> kSrgbBucketShift) + 1;
+  tables.buckets.resize(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const float first = std::bit_cast<float>(i << kSrgbBucketShift);
+    tables.buckets[i] = static_cast<std::uint8_t>(
+        std::upper_bound(tables.thresholds.begin(), tables.thresholds.end() - 1, first) - tables.thresholds.begin());
+  }
+  for (std::size_t k = 1; k < 255; ++k) {
+    if ((std::bit_cast<std::uint32_t>(tables.thresholds[k - 1]) >> kSrgbBucketShift) ==
+        (std::bit_cast<std::uint32_t>(tables.thresholds[k]) >> kSrgbBucketShift)) {
+      throw std::logic_error("sRGB encode table: two thresholds share a bucket; FloatToSrgb8 needs a finer one");
     }
-    return b;
-  }();
-  return buckets;
-}
-}  // namespace
-
-std::uint8_t FloatToSrgb8(float linear) {
-  if (!(linear > 0.0f)) return 0;  // NaN, zero and negatives
-  if (linear >= 1.0f) return 255;
-  const std::array<float, 255>& t = SrgbEncodeThresholds();
-  int code = SrgbEncodeBuckets()[std::bit_cast<std::uint32_t>(linear) >> kSrgbBucketShift];
-  while (code < 255 && linear >= t[static_cast<std::size_t>(code)]) ++code;
-  return static_cast<std::uint8_t>(code);
+  }
+  return tables;
 }
 
-float Srgb8ToFloat(std::uint8_t code) { return SrgbDecodeTable()[code]; }
+}  // namespace detail
+
 
 std::uint16_t FloatToHalf(float value) {
   return static_cast<std::uint16_t>(ToSmallFloat(value, kHalfFraction, true));
@@ -220,14 +191,5 @@ float DecodeChannel(Format format, int channel, float stored) {
   return Srgb8ToFloat(FloatToUnorm8(stored));
 }
 
-FixedPointCoord ToFixedPointCoord(float normalised, int size) {
-  // size * 256 <= 2^22 is exact in float; clamping the product to +-2^30 keeps the rounded
-  // value inside int (NaN converts to an unspecified in-range value, never undefined behaviour).
-  static_assert(raster::kMaxDimension * 256 < (1 << 24));
-  constexpr float kLimit = 1073741824.0f;
-  const float scaled = std::clamp(normalised * static_cast<float>(size * 256), -kLimit, kLimit);
-  const int s = static_cast<int>(std::lrint(scaled)) - 128;
-  return {s >> 8, s & 255};
-}
 
 }  // namespace sim

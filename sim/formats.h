@@ -8,14 +8,23 @@
 // resources, aa-facts §1.9: SMAA reads the same colour both ways).
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <string_view>
 #include <type_traits>
+#include <vector>
+
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+
+#include "raster/limits.h"
 
 namespace sim {
 
@@ -37,7 +46,9 @@ std::string_view FormatName(Format format);
 // Formats whose bilinear filter runs on the 8-bit codes in fixed point (see FixedPointCoord).
 // sRGB is not one: it is decoded, then filtered in float, as llvmpipe does (its 8-bit path
 // excludes sRGB: u_format.c util_format_fits_8unorm).
-bool IsUnorm8(Format format);
+inline bool IsUnorm8(Format format) {
+  return format == Format::R8Unorm || format == Format::RG8Unorm || format == Format::RGBA8Unorm;
+}
 // 8 bits per channel, UNORM or sRGB: every texel value is finite.
 inline bool IsEightBitPerChannel(Format format) { return IsUnorm8(format) || format == Format::RGBA8Srgb; }
 // Whether a view of `view` format may read a resource created as `resource` (the typeless
@@ -53,23 +64,53 @@ bool ViewCompatible(Format resource, Format view);
 // llvmpipe render-target stores of every (k + 0.5) / 255 (docs/smaa.md "Against the reference"):
 // floor(255 x + 0.5) in exact arithmetic differs on 127 of those 255 ties.
 inline std::uint8_t FloatToUnorm8(float value) {
-  if (std::isnan(value)) return 0;
   // Adding and removing 2^23 rounds a float in [0, 2^23) to an integer in the current rounding
   // mode (to nearest, ties to even): std::nearbyint's result without its library call, which
   // every 8-bit store and sRGB read would otherwise pay (SimFormats tests it against nearbyint).
   constexpr float kRoundingBias = 8388608.0f;
-  const float product = std::clamp(value, 0.0f, 1.0f) * 255.0f;
-  return static_cast<std::uint8_t>((product + kRoundingBias) - kRoundingBias);
+  // Written as two selects so they compile to maxss/minss: NaN fails the first comparison and
+  // becomes 0, with no branch on the hot path of every 8-bit fetch and store.
+  float clamped = value > 0.0f ? value : 0.0f;
+  clamped = clamped < 1.0f ? clamped : 1.0f;
+  return static_cast<std::uint8_t>((clamped * 255.0f + kRoundingBias) - kRoundingBias);
 }
 // D3D11 §3.2.3.5 (the code over 2^8 - 1) as llvmpipe computes it: k times float32(1 / 255),
 // which differs from the correctly rounded k / 255 by one ulp on 126 codes (measured as above).
 inline float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) * (1.0f / 255.0f); }
+namespace detail {
+// The sRGB conversion tables, built once (formats.cpp) from the double-precision curve. Inline
+// accessors: every sRGB fetch decodes up to 16 channels and every colour store encodes 3, so
+// a call per channel would cost more than the lookup.
+inline constexpr int kSrgbBucketShift = 15;
+struct SrgbTables {
+  std::array<float, 256> decode{};      // code -> the nearest float to the exact curve
+  // [k - 1]: the smallest float in [0, 1] encoding to k or more; [255] = 2, above every input.
+  std::array<float, 256> thresholds{};
+  // Floats in [0, 1] grouped by their top bits (2^15 ulps per bucket): the code of each bucket's
+  // smallest float. No bucket holds two thresholds (BuildSrgbTables checks it: the narrowest gap
+  // between two thresholds is about 10^5 ulps), so a float's code is its bucket's, plus one if
+  // it reaches the next threshold.
+  std::vector<std::uint8_t> buckets;
+};
+SrgbTables BuildSrgbTables();
+inline const SrgbTables& Srgb() {
+  static const SrgbTables tables = BuildSrgbTables();
+  return tables;
+}
+}  // namespace detail
+
 // D3D11 §3.2.3.8, exact: the encoded value the double-precision curve gives, found in a table of
 // the 255 decision thresholds (the curve evaluated per store would dominate a full-screen pass).
-std::uint8_t FloatToSrgb8(float linear);
+inline std::uint8_t FloatToSrgb8(float linear) {
+  if (!(linear > 0.0f)) return 0;  // NaN, zero and negatives
+  if (linear >= 1.0f) return 255;
+  const detail::SrgbTables& tables = detail::Srgb();
+  const int code = tables.buckets[std::bit_cast<std::uint32_t>(linear) >> detail::kSrgbBucketShift];
+  return static_cast<std::uint8_t>(code + (linear >= tables.thresholds[static_cast<std::size_t>(code)] ? 1 : 0));
+}
 // The same conversion evaluating the curve in double, the definition the table is built from.
 std::uint8_t FloatToSrgb8ByCurve(float linear);
-float Srgb8ToFloat(std::uint8_t code);
+inline float Srgb8ToFloat(std::uint8_t code) { return detail::Srgb().decode[code]; }
 std::uint16_t FloatToHalf(float value);
 float HalfToFloat(std::uint16_t bits);
 std::uint16_t FloatToFloat11(float value);
@@ -134,12 +175,16 @@ bool CanHold(Format format) {
 // Whole texels: Quantize is what a store through a view of `format` leaves in the texture,
 // Decode what a load through such a view returns for a stored texel.
 template <FormattableTexel T>
-T Quantize(Format format, T value) {
+[[gnu::always_inline]] inline T Quantize(Format format, T value) {
   if constexpr (FloatTexel<T>) {
-    if (format == Format::RGBA8Srgb && kTexelComponents<T> == 4) {  // every colour store of a pass
-      for (int c = 0; c < 3; ++c) TexelComponent(value, c) = Unorm8ToFloat(FloatToSrgb8(TexelComponent(value, c)));
-      TexelComponent(value, 3) = Unorm8ToFloat(FloatToUnorm8(TexelComponent(value, 3)));
-      return value;
+    if constexpr (kTexelComponents<T> == 4) {
+      if (format == Format::RGBA8Srgb) {  // every colour store of a pass: unrolled
+        value[0] = Unorm8ToFloat(FloatToSrgb8(value[0]));
+        value[1] = Unorm8ToFloat(FloatToSrgb8(value[1]));
+        value[2] = Unorm8ToFloat(FloatToSrgb8(value[2]));
+        value[3] = Unorm8ToFloat(FloatToUnorm8(value[3]));
+        return value;
+      }
     }
     for (int c = 0; c < kTexelComponents<T>; ++c) {
       TexelComponent(value, c) = QuantizeChannel(format, c, TexelComponent(value, c));
@@ -148,11 +193,20 @@ T Quantize(Format format, T value) {
   return value;
 }
 template <FormattableTexel T>
-T Decode(Format format, T stored) {
+[[gnu::always_inline]] inline T Decode(Format format, T stored) {
   if constexpr (FloatTexel<T>) {
     if (format != Format::RGBA8Srgb) return stored;  // only sRGB reads differ from what is kept
-    for (int c = 0; c < kTexelComponents<T>; ++c) {
-      TexelComponent(stored, c) = DecodeChannel(format, c, TexelComponent(stored, c));
+    // Alpha (and anything past it) is linear in every sRGB format. Unrolled: every texel of an
+    // sRGB bilinear fetch comes through here.
+    const float* const decode = detail::Srgb().decode.data();
+    if constexpr (kTexelComponents<T> >= 3) {
+      stored[0] = decode[FloatToUnorm8(stored[0])];
+      stored[1] = decode[FloatToUnorm8(stored[1])];
+      stored[2] = decode[FloatToUnorm8(stored[2])];
+    } else {
+      for (int c = 0; c < kTexelComponents<T>; ++c) {
+        TexelComponent(stored, c) = decode[FloatToUnorm8(TexelComponent(stored, c))];
+      }
     }
   }
   return stored;
@@ -168,7 +222,21 @@ struct FixedPointCoord {
   int texel;   // left (or top) texel of the footprint, before offsets and addressing
   int weight;  // 0..255, weight of the right (or bottom) texel in 1/256
 };
-FixedPointCoord ToFixedPointCoord(float normalised, int size);
+inline FixedPointCoord ToFixedPointCoord(float normalised, int size) {
+  // size * 256 <= 2^22 is exact in float; clamping the product to +-2^30 keeps the rounded
+  // value inside int. NaN takes the coordinate 0 (a NaN coordinate is undefined in D3D).
+  static_assert(raster::kMaxDimension * 256 < (1 << 24));
+  constexpr float kLimit = 1073741824.0f;
+  float scaled = std::clamp(normalised * static_cast<float>(size * 256), -kLimit, kLimit);
+  if (std::isnan(scaled)) scaled = 0.0f;
+#if defined(__SSE__) || defined(__x86_64__)
+  // cvtss2si: lrint's rounding (the current mode, to nearest even) without its library call.
+  const int s = _mm_cvtss_si32(_mm_set_ss(scaled)) - 128;
+#else
+  const int s = static_cast<int>(std::lrint(scaled)) - 128;
+#endif
+  return {s >> 8, s & 255};
+}
 
 // lerp(w, a, b) = a + ((w * (b - a) + 128) >> 8) on 8-bit codes: llvmpipe's lp_build_lerp
 // with prescaled weights on its SSSE3/AVX2 path (pmulhrsw of w and (b - a) << 7 rounds this

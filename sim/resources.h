@@ -22,6 +22,11 @@ namespace sim {
 class Resource {
  public:
   Resource(std::string name, std::size_t modelledBytes);
+  Resource(const Resource&) = default;
+  Resource(Resource&&) = default;
+  Resource& operator=(const Resource&) = default;
+  Resource& operator=(Resource&&) = default;
+  virtual ~Resource() = default;
 
   const std::string& Name() const { return name_; }
   std::size_t ModelledBytes() const { return modelledBytes_; }
@@ -29,10 +34,19 @@ class Resource {
   // Line tracking for one dispatch. Touch* may be called from several host threads: bits are
   // set with atomic OR, which commutes, so the result does not depend on the thread count.
   void BeginDispatch();
-  void TouchRead(std::size_t byteOffset, std::size_t bytes) const { Touch(readLines_, byteOffset, bytes); }
-  void TouchWrite(std::size_t byteOffset, std::size_t bytes) const { Touch(writtenLines_, byteOffset, bytes); }
+  [[gnu::always_inline]] void TouchRead(std::size_t byteOffset, std::size_t bytes) const {
+    Touch(readLines_, byteOffset, bytes);
+  }
+  [[gnu::always_inline]] void TouchWrite(std::size_t byteOffset, std::size_t bytes) const {
+    Touch(writtenLines_, byteOffset, bytes);
+  }
   std::uint64_t LinesRead() const { return CountBits(readLines_); }
   std::uint64_t LinesWritten() const { return CountBits(writtenLines_); }
+
+  // A host-side hint, no machine operation: the host memory holding texels [x0, x1) x [y0, y1)
+  // (clipped) is about to be read or written. A bin of a full-screen pass covers rows too short
+  // for the host's stream prefetchers, so its texel fetches wait on memory one line at a time.
+  virtual void PrefetchRect(int x0, int y0, int x1, int y1) const;
 
  private:
   static void Touch(std::vector<std::uint64_t>& lines, std::size_t byteOffset, std::size_t bytes);
@@ -46,7 +60,8 @@ class Resource {
   mutable std::vector<std::uint64_t> writtenLines_;
 };
 
-inline void Resource::Touch(std::vector<std::uint64_t>& lines, std::size_t byteOffset, std::size_t bytes) {
+[[gnu::always_inline]] inline void Resource::Touch(std::vector<std::uint64_t>& lines, std::size_t byteOffset,
+                                                   std::size_t bytes) {
   const std::size_t first = byteOffset / kCacheLineBytes;
   const std::size_t last = (byteOffset + bytes - 1) / kCacheLineBytes;
   for (std::size_t line = first; line <= last; ++line) {
@@ -91,6 +106,15 @@ class Texture2D : public Resource {
   std::span<T> Texels() { return texels_; }
   std::span<const T> Texels() const { return texels_; }
   void Fill(const T& value) { std::fill(texels_.begin(), texels_.end(), Kept(value)); }
+
+  void PrefetchRect(int x0, int y0, int x1, int y1) const override {
+    x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, width_), y1 = std::min(y1, height_);
+    constexpr int kTexelsPerLine = std::max<int>(1, static_cast<int>(kCacheLineBytes / sizeof(T)));
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; x += kTexelsPerLine) __builtin_prefetch(&texels_[Index(x, y)]);
+      if (x0 < x1) __builtin_prefetch(&texels_[Index(x1 - 1, y)]);
+    }
+  }
 
  private:
   static std::string CheckedName(std::string name, int width, int height, int texelBytes) {

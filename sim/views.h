@@ -52,10 +52,10 @@ inline constexpr int kMinTexelOffset = -8;
 inline constexpr int kMaxTexelOffset = 7;
 
 namespace detail {
-[[noreturn]] inline void ThrowBadTexelArgument(const LaneBase& lane, const std::string& what) {
+[[noreturn, gnu::noinline, gnu::cold]] inline void ThrowBadTexelArgument(const LaneBase& lane, const std::string& what) {
   throw KernelError(lane.chunk->dispatch->name + ": " + what);
 }
-inline void CheckTexelOffset(const LaneBase& lane, glm::ivec2 offset) {
+[[gnu::always_inline]] inline void CheckTexelOffset(const LaneBase& lane, glm::ivec2 offset) {
   if (offset.x < kMinTexelOffset || offset.x > kMaxTexelOffset || offset.y < kMinTexelOffset ||
       offset.y > kMaxTexelOffset) {
     ThrowBadTexelArgument(lane, "texel offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
@@ -131,11 +131,10 @@ class TextureView {
     // At a texel centre the lerps return the first texel exactly when every texel is finite, as
     // 8-bit texels always are; the footprint is still fetched.
     if (f.x == 0.0f && f.y == 0.0f && format_ && IsEightBitPerChannel(*format_)) {
-      const T centre = Read(xa, ya);
-      Texel(x1, ya);
-      Texel(xa, y1);
-      Texel(x1, y1);
-      return centre;
+      TouchTexel(x1, ya);
+      TouchTexel(xa, y1);
+      TouchTexel(x1, y1);
+      return Read(xa, ya);
     }
     const T top = Read(xa, ya) * (1.0f - f.x) + Read(x1, ya) * f.x;
     const T bottom = Read(xa, y1) * (1.0f - f.x) + Read(x1, y1) * f.x;
@@ -178,10 +177,15 @@ class TextureView {
     const int x0 = cx.texel + offset.x, y0 = cy.texel + offset.y;
     const int xa = Address(x0, Width(), mode), x1 = Address(x0 + 1, Width(), mode);
     const int ya = Address(y0, Height(), mode), y1 = Address(y0 + 1, Height(), mode);
-    const T t00 = Texel(xa, ya), t10 = Texel(x1, ya), t01 = Texel(xa, y1), t11 = Texel(x1, y1);
     // At a texel centre both weights are 0 and every lerp returns its first code: the stored
     // texel (8-bit texels are kept as code / 255). The footprint is still fetched and counted.
-    if (cx.weight == 0 && cy.weight == 0) return t00;
+    if (cx.weight == 0 && cy.weight == 0) {
+      TouchTexel(x1, ya);
+      TouchTexel(xa, y1);
+      TouchTexel(x1, y1);
+      return Texel(xa, ya);
+    }
+    const T t00 = Texel(xa, ya), t10 = Texel(x1, ya), t01 = Texel(xa, y1), t11 = Texel(x1, y1);
     T result{};
     for (int c = 0; c < kTexelComponents<T>; ++c) {
       const auto code = [c](const T& texel) { return static_cast<int>(FloatToUnorm8(TexelComponent(texel, c))); };
@@ -197,16 +201,24 @@ class TextureView {
     ++traffic.fetches;
     traffic.bytesRead += static_cast<std::uint64_t>(texels) * static_cast<std::uint64_t>(texture_->TexelBytes());
   }
-  // The stored texel; out of range, zero in every channel (D3D).
-  T Texel(int x, int y) const {
+  // The stored texel; out of range, zero in every channel (D3D). Always inlined: a bilinear
+  // sample makes four of these, and the call cost more than the fetch.
+  [[gnu::always_inline]] T Texel(int x, int y) const {
     if (!texture_->Contains(x, y)) return T{};
     const std::size_t index = texture_->Index(x, y);
     const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
     texture_->TouchRead(index * bytes, bytes);
-    return texture_->At(x, y);
+    return texture_->Texels()[index];
+  }
+  // A texel of the footprint the filter fetches but whose value it does not need: its line is
+  // marked as Texel would, without the host load.
+  [[gnu::always_inline]] void TouchTexel(int x, int y) const {
+    if (!texture_->Contains(x, y)) return;
+    const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
+    texture_->TouchRead(texture_->Index(x, y) * bytes, bytes);
   }
   // The texel as a shader reads it through this view.
-  T Read(int x, int y) const {
+  [[gnu::always_inline]] T Read(int x, int y) const {
     if constexpr (FormattableTexel<T>) {
       if (format_ == Format::RGBA8Srgb) return Decode(Format::RGBA8Srgb, Texel(x, y));
     }

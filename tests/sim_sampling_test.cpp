@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -119,6 +120,19 @@ TEST(SimSampling, FixedPointBilinearMatchesAnIntegerReference) {
   ExpectFixedPointMatchesReference<glm::vec2>(Format::RG8Unorm, 16, 8, 2);
   ExpectFixedPointMatchesReference<float>(Format::R8Unorm, 13, 3, 3);
   ExpectFixedPointMatchesReference<glm::vec4>(Format::R8Unorm, 5, 9, 4);  // g, b read 0 and alpha 1
+}
+
+// D3D leaves a NaN coordinate undefined; aasim reads it as coordinate 0, the same texel and
+// weight on every host (lrint's result for NaN is unspecified).
+TEST(SimSampling, ANanCoordinateFiltersAsCoordinateZero) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const int size : {1, 7, 1920}) {
+    const FixedPointCoord atNan = ToFixedPointCoord(nan, size), atZero = ToFixedPointCoord(0.0f, size);
+    EXPECT_EQ(atNan.texel, atZero.texel) << size;
+    EXPECT_EQ(atNan.weight, atZero.weight) << size;
+  }
+  EXPECT_EQ(ToFixedPointCoord(0.0f, 7).texel, -1);
+  EXPECT_EQ(ToFixedPointCoord(0.0f, 7).weight, 128);
 }
 
 // With 8 fractional bits the weight is k/256, not a float: a quarter of the way from code 0 to
