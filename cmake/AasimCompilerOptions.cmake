@@ -28,6 +28,9 @@ if(AASIM_TSAN)
   target_compile_options(aasim_opt INTERFACE -fsanitize=thread -fno-omit-frame-pointer -O2 -g1
                                              -Wno-null-dereference)
   target_link_options(aasim_opt INTERFACE -fsanitize=thread)
+  # tbb::parallel_for on std::threads TSan can follow (tests/tsan/oneapi/tbb/parallel_for.h):
+  # ahead of the system headers on every target's include path.
+  target_include_directories(aasim_opt BEFORE INTERFACE ${PROJECT_SOURCE_DIR}/tests/tsan)
 endif()
 
 if(AASIM_FUZZ)

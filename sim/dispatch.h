@@ -287,8 +287,6 @@ class Machine {
                                       std::array<PixelLane, kWaveLanes>& lanes);
   static void CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
                                 const PixelTargets& targets);
-  // Host prefetch of every bound resource over the bin (and a small apron) before its waves run.
-  static void PrefetchBin(const Dispatch& dispatch, const raster::RasterResult& result, std::size_t bin);
   template <typename... Stages>
   void RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 threads,
                                   glm::ivec3 groupSize, const GroupLimits& limits, Stages&... stages);

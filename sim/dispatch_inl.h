@@ -152,7 +152,6 @@ void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
     chunk.groupThreads = kWaveLanes;  // Private<T>() keeps one T per lane of the wave
     const std::vector<raster::QuadFragment>& quads = result.quadsByBin[bin];
     PackedWaves packed;
-    PrefetchBin(dispatch, result, bin);
     if (targets.stencil != nullptr) {
       for (const raster::QuadFragment& quad : quads) CountStencilReads(chunk, quad, targets);
     }

@@ -248,17 +248,6 @@ std::uint64_t Machine::SetUpPixelWave(detail::ChunkState& chunk, std::span<const
   return exec;
 }
 
-void Machine::PrefetchBin(const Dispatch& dispatch, const raster::RasterResult& result, std::size_t bin) {
-  // Kernels read their pixel's neighbours: the apron covers the common 1-2 texel footprints.
-  constexpr int kApron = 2;
-  const int x0 = static_cast<int>(bin % static_cast<std::size_t>(result.binsX)) * raster::kBinSize;
-  const int y0 = static_cast<int>(bin / static_cast<std::size_t>(result.binsX)) * raster::kBinSize;
-  for (const Dispatch::Binding& binding : dispatch.bindings_) {
-    binding.resource->PrefetchRect(x0 - kApron, y0 - kApron, x0 + raster::kBinSize + kApron,
-                                   y0 + raster::kBinSize + kApron);
-  }
-}
-
 void Machine::CountStencilReads(detail::ChunkState& chunk, const raster::QuadFragment& quad,
                                 const PixelTargets& targets) {
   // The DB reads one stencil byte per covered pixel of a quad that reached the per-pixel test.

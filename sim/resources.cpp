@@ -23,8 +23,6 @@ void Resource::BeginDispatch() {
   std::fill(writtenLines_.begin(), writtenLines_.end(), 0);
 }
 
-void Resource::PrefetchRect(int, int, int, int) const {}
-
 std::uint64_t Resource::CountBits(const std::vector<std::uint64_t>& lines) {
   std::uint64_t count = 0;
   for (const std::uint64_t word : lines) count += static_cast<std::uint64_t>(std::popcount(word));

@@ -22,11 +22,6 @@ namespace sim {
 class Resource {
  public:
   Resource(std::string name, std::size_t modelledBytes);
-  Resource(const Resource&) = default;
-  Resource(Resource&&) = default;
-  Resource& operator=(const Resource&) = default;
-  Resource& operator=(Resource&&) = default;
-  virtual ~Resource() = default;
 
   const std::string& Name() const { return name_; }
   std::size_t ModelledBytes() const { return modelledBytes_; }
@@ -42,11 +37,6 @@ class Resource {
   }
   std::uint64_t LinesRead() const { return CountBits(readLines_); }
   std::uint64_t LinesWritten() const { return CountBits(writtenLines_); }
-
-  // A host-side hint, no machine operation: the host memory holding texels [x0, x1) x [y0, y1)
-  // (clipped) is about to be read or written. A bin of a full-screen pass covers rows too short
-  // for the host's stream prefetchers, so its texel fetches wait on memory one line at a time.
-  virtual void PrefetchRect(int x0, int y0, int x1, int y1) const;
 
  private:
   static void Touch(std::vector<std::uint64_t>& lines, std::size_t byteOffset, std::size_t bytes);
@@ -106,15 +96,6 @@ class Texture2D : public Resource {
   std::span<T> Texels() { return texels_; }
   std::span<const T> Texels() const { return texels_; }
   void Fill(const T& value) { std::fill(texels_.begin(), texels_.end(), Kept(value)); }
-
-  void PrefetchRect(int x0, int y0, int x1, int y1) const override {
-    x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, width_), y1 = std::min(y1, height_);
-    constexpr int kTexelsPerLine = std::max<int>(1, static_cast<int>(kCacheLineBytes / sizeof(T)));
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; x += kTexelsPerLine) __builtin_prefetch(&texels_[Index(x, y)]);
-      if (x0 < x1) __builtin_prefetch(&texels_[Index(x1 - 1, y)]);
-    }
-  }
 
  private:
   static std::string CheckedName(std::string name, int width, int height, int texelBytes) {

@@ -30,6 +30,23 @@
 namespace sim {
 
 namespace detail {
+// A store another chunk of the same dispatch may also make to the same texel or element: D3D
+// lets a dispatch's groups write one UAV location in any order (MiniEngine FXAA's luma tiles
+// overlap by their apron, every group writing the same values there). Each scalar is stored
+// with a relaxed atomic, which on x86 and ARM is the plain store, so such overlaps are not a
+// host data race (ThreadSanitizer, docs/fuzzing.md). Overlapping writes of different values stay
+// what they are on a GPU: an order-dependent result, which the determinism tests would catch.
+template <typename T>
+[[gnu::always_inline]] inline void StoreRelaxed(T& target, const T& value) {
+  if constexpr (std::is_arithmetic_v<T>) {
+    std::atomic_ref<T>(target).store(value, std::memory_order_relaxed);
+  } else {
+    for (glm::length_t c = 0; c < T::length(); ++c) {
+      std::atomic_ref<typename T::value_type>(target[c]).store(value[c], std::memory_order_relaxed);
+    }
+  }
+}
+
 // The traffic a view counts into, after checking that the view belongs to the running dispatch.
 inline ResourceTraffic& Traffic(const LaneBase& lane, const ViewBinding& binding) {
   CheckOrigin(lane, binding);
@@ -260,7 +277,7 @@ class RwTextureView {
     const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
     traffic.bytesWritten += bytes;
     texture_->TouchWrite(texture_->Index(x, y) * bytes, bytes);
-    texture_->At(x, y) = Kept(value);
+    detail::StoreRelaxed(texture_->At(x, y), Kept(value));
   }
 
  private:
@@ -313,7 +330,7 @@ class RwBufferView {
     const auto bytes = static_cast<std::size_t>(buffer_->ElementBytes());
     traffic.bytesWritten += bytes;
     buffer_->TouchWrite(index * bytes, bytes);
-    buffer_->At(index) = value;
+    detail::StoreRelaxed(buffer_->At(index), value);
   }
   // Atomics without a returned value (InterlockedAdd/Min/Max with no `original`): they commute,
   // so the result is the same whichever lane comes first, and any dispatch may use them.
