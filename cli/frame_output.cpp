@@ -48,18 +48,23 @@ std::vector<std::uint8_t> MaskImage(std::span<const float> mask) {
   return pixels;
 }
 
-void WriteLayerPng(const std::filesystem::path& path, const passes::PassLayer& layer) {
+LayerPng LayerPngImage(const passes::PassLayer& layer) {
   const std::size_t channels = layer.channels.size();
-  const int pngChannels = channels == 2 ? 3 : static_cast<int>(channels);
-  std::vector<std::uint8_t> pixels;
-  pixels.reserve(layer.values.size() / channels * static_cast<std::size_t>(pngChannels));
+  LayerPng png{.channels = channels == 2 ? 3 : static_cast<int>(channels), .pixels = {}};
+  png.pixels.reserve(layer.values.size() / channels * static_cast<std::size_t>(png.channels));
   for (std::size_t at = 0; at < layer.values.size(); at += channels) {
-    for (int c = 0; c < pngChannels; ++c) {
-      pixels.push_back(static_cast<std::size_t>(c) < channels ? sim::FloatToUnorm8(layer.values[at + static_cast<std::size_t>(c)])
-                                                            : 0);
+    for (int c = 0; c < png.channels; ++c) {
+      png.pixels.push_back(static_cast<std::size_t>(c) < channels
+                               ? sim::FloatToUnorm8(layer.values[at + static_cast<std::size_t>(c)])
+                               : 0);
     }
   }
-  WritePng(path, layer.width, layer.height, pngChannels, pixels);
+  return png;
+}
+
+void WriteLayerPng(const std::filesystem::path& path, const passes::PassLayer& layer) {
+  const LayerPng png = LayerPngImage(layer);
+  WritePng(path, layer.width, layer.height, png.channels, png.pixels);
 }
 
 void WriteLayerExr(const std::filesystem::path& path, const passes::PassLayer& layer) {

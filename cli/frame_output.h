@@ -26,6 +26,13 @@ std::vector<std::uint8_t> MaskImage(std::span<const float> mask);
 // codes an 8-bit UNORM target holds (layers are data such as edges and weights, not colour);
 // 1 channel as grey, 2 as red/green (blue 0), 3 as RGB, 4 as RGBA.
 void WriteLayerPng(const std::filesystem::path& path, const passes::PassLayer& layer);
+// The PNG of WriteLayerPng: its channel count (one or two channels become grey or RGB with blue
+// 0) and its bytes.
+struct LayerPng {
+  int channels = 0;
+  std::vector<std::uint8_t> pixels;
+};
+LayerPng LayerPngImage(const passes::PassLayer& layer);
 // The layer's float values, one EXR channel per layer channel under its name.
 void WriteLayerExr(const std::filesystem::path& path, const passes::PassLayer& layer);
 

@@ -38,6 +38,16 @@ void WritePng(const std::filesystem::path& path, int width, int height, int chan
   }
 }
 
+void StagePngLater(OutputDir& dir, std::string_view fileName, int width, int height, int channels,
+                   std::vector<std::uint8_t> pixels) {
+  if (channels < 1 || channels > 4 || pixels.size() != PixelCount(width, height) * channels) {
+    throw std::invalid_argument("StagePngLater: pixel buffer does not match the image size");
+  }
+  dir.WriteLater(fileName, [width, height, channels, pixels = std::move(pixels)](const std::filesystem::path& path) {
+    WritePng(path, width, height, channels, pixels);
+  });
+}
+
 std::vector<std::uint8_t> EncodePng(int width, int height, int channels, std::span<const std::uint8_t> pixels) {
   if (channels < 1 || channels > 4 || pixels.size() != PixelCount(width, height) * channels) {
     throw std::invalid_argument("EncodePng: pixel buffer does not match the image size");

@@ -7,8 +7,10 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "cli/output_dir.h"
 #include "sim/colour.h"
 
 namespace cli {
@@ -20,6 +22,11 @@ using sim::EncodeSrgb8;
 // Throws OutputError naming the path.
 void WritePng(const std::filesystem::path& path, int width, int height, int channels,
               std::span<const std::uint8_t> pixels);
+
+// The same, staged in `dir` as `fileName` and encoded on a worker thread while the caller goes
+// on (OutputDir::WriteLater): the pixels are moved in.
+void StagePngLater(OutputDir& dir, std::string_view fileName, int width, int height, int channels,
+                   std::vector<std::uint8_t> pixels);
 
 // The same PNG in memory (for self-contained HTML reports).
 std::vector<std::uint8_t> EncodePng(int width, int height, int channels, std::span<const std::uint8_t> pixels);

@@ -16,6 +16,8 @@
 #include <system_error>
 #include <thread>
 
+#include <oneapi/tbb/task_group.h>
+
 #include "cli/output_error.h"
 
 namespace cli {
@@ -141,7 +143,26 @@ OutputDir::OutputDir(fs::path dir) : dir_(std::move(dir)) {
   Live().dirs.push_back(this);
 }
 
+struct OutputDir::Writers {
+  tbb::task_group group;
+};
+
+void OutputDir::WriteLater(std::string_view fileName, std::function<void(const fs::path&)> write) {
+  const fs::path temporary = Stage(fileName);
+  if (!writers_) writers_ = std::make_unique<Writers>();
+  writers_->group.run([temporary, write = std::move(write)] { write(temporary); });
+}
+
+void OutputDir::WaitForWriters() {
+  if (writers_) writers_->group.wait();
+}
+
 OutputDir::~OutputDir() {
+  // Staged files are removed only once no writer can still be creating one.
+  try {
+    WaitForWriters();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): the run is failing already; its files go below
+  }
   const std::lock_guard lock(Live().mutex);
   RemoveTemporaries();
   std::erase(Live().dirs, this);
@@ -171,6 +192,7 @@ void OutputDir::CreateFolders(const fs::path& folder) {
 }
 
 std::vector<fs::path> OutputDir::Commit(std::string_view manifest) {
+  WaitForWriters();
   const std::lock_guard lock(Live().mutex);
   PutLast(manifest);
   std::vector<fs::path> kept;

@@ -5,6 +5,8 @@
 // set (see docs/cli.md, "Output sets").
 
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -29,6 +31,12 @@ class OutputDir {
   // again if the set is not committed.
   std::filesystem::path Stage(std::string_view fileName);
 
+  // Stages `fileName` now and runs write(the temporary path) on oneTBB's worker threads while the
+  // caller goes on: for files whose encoding is slow and single-threaded (a 1080p PNG is about
+  // 0.1 s of stb's deflate), so a run need not wait for each. Commit() first waits for every
+  // such writer and throws the first failure; so does the destructor, which then cleans up.
+  void WriteLater(std::string_view fileName, std::function<void(const std::filesystem::path&)> write);
+
   // Renames every staged file into place, `manifest` (a staged name, or empty) last, and
   // returns the final paths. Either the whole new set is in place afterwards, or OutputError is
   // thrown and the previous files are back as they were. Signals wait until it is done.
@@ -51,11 +59,15 @@ class OutputDir {
   std::vector<std::filesystem::path> MoveOldFilesAside() const;
   std::vector<std::filesystem::path> MoveNewFilesIn() const;
   void RemoveTemporaries() noexcept;
+  void WaitForWriters();
+
+  struct Writers;  // oneTBB's task group, kept out of this header
 
   std::filesystem::path dir_;
   std::filesystem::path staging_;  // hidden, in dir_; every temporary lives under it
   std::vector<StagedFile> staged_;
   std::vector<std::filesystem::path> createdFolders_;  // in creation order
+  std::unique_ptr<Writers> writers_;
 };
 
 // An OutputDir for a command's --out option: OutputDir's errors, prefixed "--out " so the

@@ -113,7 +113,7 @@ void SequenceImages::SetRegion(const PixelRect& region, int zoom) {
 void SequenceImages::Add(const SequenceGroup*, const SequenceTrack* track, int frame,
                          const sim::Texture2D<glm::vec4>& image) {
   const std::string folder = track ? track->folder : kGroundTruthSequenceFolder;
-  WritePng(dir_.Stage(FrameFile(folder, frame)), image.Width(), image.Height(), 3, SrgbImage(image.Texels()));
+  StagePngLater(dir_, FrameFile(folder, frame), image.Width(), image.Height(), 3, SrgbImage(image.Texels()));
   if (HasRegion()) strips_[folder].push_back(Crop(image.Texels(), image.Width(), region_));
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "cli/counters_json.h"
@@ -46,7 +47,7 @@ const std::string kImages = "images/";
 // ---- Files ----------------------------------------------------------------------------------
 
 void StageColour(OutputDir& dir, const std::string& path, const sim::Texture2D<glm::vec4>& colour) {
-  WritePng(dir.Stage(path), colour.Width(), colour.Height(), 3, SrgbImage(colour.Texels()));
+  StagePngLater(dir, path, colour.Width(), colour.Height(), 3, SrgbImage(colour.Texels()));
 }
 
 void StageErrorFiles(OutputDir& dir, const ScoredImage& image) {
@@ -55,8 +56,8 @@ void StageErrorFiles(OutputDir& dir, const ScoredImage& image) {
   const ExrChannel channels[] = {
       {"squared_error", maps.squaredError}, {"ssim_error", maps.ssimError}, {"flip", maps.flip}};
   WriteExr(dir.Stage(kImages + image.folder + "/error.exr"), width, height, channels);
-  const RgbImage flip = ErrorPreview(maps.flip, width, height, 1.0f, 1);
-  WritePng(dir.Stage(kImages + image.folder + "/flip.png"), flip.width, flip.height, 3, flip.rgb);
+  RgbImage flip = ErrorPreview(maps.flip, width, height, 1.0f, 1);
+  StagePngLater(dir, kImages + image.folder + "/flip.png", flip.width, flip.height, 3, std::move(flip.rgb));
 }
 
 void StageGroundTruth(OutputDir& dir, const StudyGroundTruth& truth) {
@@ -70,13 +71,14 @@ void StageGroundTruth(OutputDir& dir, const StudyGroundTruth& truth) {
   const ExrChannel channels[] = {
       {"R", r}, {"G", g}, {"B", b}, {"coverage", image.coverage}, {"edge", truth.edgeMask}};
   WriteExr(dir.Stage(kImages + "ground-truth/ground-truth.exr"), image.width, image.height, channels);
-  WritePng(dir.Stage(kImages + "ground-truth/colour.png"), image.width, image.height, 3, SrgbImage(truth.colour.Texels()));
-  WritePng(dir.Stage(kImages + "ground-truth/edges.png"), image.width, image.height, 1, MaskImage(truth.edgeMask));
+  StagePngLater(dir, kImages + "ground-truth/colour.png", image.width, image.height, 3, SrgbImage(truth.colour.Texels()));
+  StagePngLater(dir, kImages + "ground-truth/edges.png", image.width, image.height, 1, MaskImage(truth.edgeMask));
 }
 
 // The 8-bit codes as PNG (what the pass's render target held) and the values as EXR.
 void StageLayer(OutputDir& dir, const std::string& folder, const passes::PassLayer& layer) {
-  WriteLayerPng(dir.Stage(folder + layer.name + ".png"), layer);
+  LayerPng png = LayerPngImage(layer);
+  StagePngLater(dir, folder + layer.name + ".png", layer.width, layer.height, png.channels, std::move(png.pixels));
   WriteLayerExr(dir.Stage(folder + layer.name + ".exr"), layer);
 }
 

@@ -250,6 +250,15 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
     std::vector<glm::ivec2> attribution(static_cast<std::size_t>(groupThreads));
     std::vector<std::uint8_t> live(static_cast<std::size_t>(groupThreads));
     std::vector<std::uint64_t> waveExec(static_cast<std::size_t>(wavesPerGroup));
+    // What a lane is within its group does not change from group to group: set once per chunk.
+    for (int i = 0; i < groupThreads; ++i) {
+      ComputeLane& lane = lanes[static_cast<std::size_t>(i)];
+      lane.chunk = &chunk;
+      lane.localIndex = i;
+      lane.waveInGroup = i / kWaveLanes;
+      lane.lane = i % kWaveLanes;
+      lane.localId = {i % groupSize.x, (i / groupSize.x) % groupSize.y, i / (groupSize.x * groupSize.y)};
+    }
     const std::size_t end = std::min(groupCount, (chunkIndex + 1) * kGroupsPerChunk);
     for (std::size_t g = chunkIndex * kGroupsPerChunk; g < end; ++g) {
       const auto gi = static_cast<int>(g);
@@ -259,12 +268,7 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
       std::fill(waveExec.begin(), waveExec.end(), std::uint64_t{0});
       for (int i = 0; i < groupThreads; ++i) {
         ComputeLane& lane = lanes[static_cast<std::size_t>(i)];
-        lane.chunk = &chunk;
-        lane.localIndex = i;
-        lane.waveInGroup = i / kWaveLanes;
-        lane.lane = i % kWaveLanes;
         lane.groupId = groupId;
-        lane.localId = {i % groupSize.x, (i / groupSize.x) % groupSize.y, i / (groupSize.x * groupSize.y)};
         lane.threadId = groupId * groupSize + lane.localId;
         const long long linear = lane.threadId.x + static_cast<long long>(launched.x) *
                                                        (lane.threadId.y + static_cast<long long>(launched.y) * lane.threadId.z);

@@ -223,7 +223,8 @@ std::uint64_t Machine::SetUpPixelWave(detail::ChunkState& chunk, std::span<const
       const int laneIndex = static_cast<int>(k) * raster::kQuadPixels + p;
       const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
       chunk.lanes.CountLane(laneKind);
-      chunk.heat->Add(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
+      static_assert(raster::kBinSize % kTileSize == 0, "a bin holds whole heat-map tiles");
+      chunk.heat->AddOwned(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
       const bool runs = laneKind == LaneKind::Active || laneKind == LaneKind::Helper;
       exec |= static_cast<std::uint64_t>(runs) << laneIndex;
       active += laneKind == LaneKind::Active;

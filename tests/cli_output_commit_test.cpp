@@ -96,6 +96,63 @@ TEST_F(CliOutputCommit, AFailedRenameRestoresThePreviousSet) {
   EXPECT_EQ(TakeSnapshot(dir), (Snapshot{{"a.txt", "old a"}, {"m.json", "old m"}}));
 }
 
+// Files written on worker threads (OutputDir::WriteLater) are all in place after Commit, even
+// when their writers are still busy when Commit is called.
+TEST_F(CliOutputCommit, FilesWrittenLaterAreCommittedWithTheSet) {
+  cli::OutputDir out(scratch_ / "set");
+  for (int i = 0; i < 8; ++i) {
+    out.WriteLater("later/" + std::to_string(i) + ".txt", [i](const fs::path& path) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      WriteFile(path, "file " + std::to_string(i));
+    });
+  }
+  WriteFile(out.Stage("m.json"), "m");
+  out.Commit("m.json");
+  Snapshot expected{{"later/", ""}, {"m.json", "m"}};
+  for (int i = 0; i < 8; ++i) expected["later/" + std::to_string(i) + ".txt"] = "file " + std::to_string(i);
+  EXPECT_EQ(TakeSnapshot(scratch_ / "set"), expected);
+}
+
+// A writer that fails on its worker thread fails the commit with its own error, and the previous
+// set stays as it was with no staged file left behind.
+TEST_F(CliOutputCommit, AWriterFailingLaterFailsTheCommitAndKeepsThePreviousSet) {
+  const fs::path dir = scratch_ / "set";
+  {
+    cli::OutputDir out(dir);
+    WriteFile(out.Stage("a.txt"), "old a");
+    out.Commit();
+  }
+  {
+    cli::OutputDir out(dir);
+    WriteFile(out.Stage("a.txt"), "new a");
+    out.WriteLater("b.txt", [](const fs::path& path) {
+      WriteFile(path, "half");
+      throw cli::OutputError(path.filename().string() + ": cannot write PNG");
+    });
+    try {
+      out.Commit();
+      ADD_FAILURE() << "the commit succeeded";
+    } catch (const cli::OutputError& error) {
+      EXPECT_STREQ(error.what(), "b.txt: cannot write PNG");
+    }
+  }
+  EXPECT_EQ(TakeSnapshot(dir), (Snapshot{{"a.txt", "old a"}}));
+}
+
+// A set given up while a writer is still busy (an exception elsewhere) waits for it, then
+// removes its file with the rest.
+TEST_F(CliOutputCommit, ASetGivenUpWaitsForItsWritersThenLeavesNothing) {
+  const fs::path dir = scratch_ / "fresh";
+  {
+    cli::OutputDir out(dir);
+    out.WriteLater("slow.txt", [](const fs::path& path) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      WriteFile(path, "slow");
+    });
+  }
+  EXPECT_FALSE(fs::exists(dir));
+}
+
 TEST_F(CliOutputCommit, TheManifestIsCommittedLast) {
   cli::OutputDir out(scratch_ / "set");
   WriteFile(out.Stage("m.json"), "m");
