@@ -12,6 +12,7 @@
 
 #include "cli/common_options.h"
 #include "cli/frame_options.h"
+#include "passes/metrics.h"
 #include "passes/registry.h"
 #include "passes/craa/craa_lut.h"
 #include "passes/resolve.h"
@@ -505,9 +506,11 @@ std::uint64_t EstimateRunBytes(int width, int height, const std::vector<fmask::E
   for (const fmask::EqaaConfig& mode : modes) {
     largestFrame = std::max(largestFrame, EstimateFrameBytes(1, 1, mode, nullptr, 0));
   }
-  // Ground truth (colour, coverage, edge) and one metrics evaluation's maps and scratch
-  // (passes/metrics.cpp: SSIM's and FLIP's per-pixel planes, 24 floats at most at once).
-  const std::uint64_t groundTruth = sizeof(glm::vec3) + sizeof(float) + 1;
+  // Ground truth (colour, coverage, edge, its half of the metrics: passes::ScoringReference) and
+  // one metrics evaluation's maps and scratch (passes/metrics.cpp: SSIM's and FLIP's per-pixel
+  // planes, 24 floats at most at once).
+  const std::uint64_t groundTruth =
+      sizeof(glm::vec3) + sizeof(float) + 1 + passes::ScoringReference::kBytesPerPixel;
   const std::uint64_t metrics = 3 * sizeof(float) + 24 * sizeof(float);
   // Kept per scored image (a frame, each resolve of it, the passes' sRGB8 input): colour and three
   // error maps. Compared policies redraw the EQAA modes. While a frame's files are written, its
@@ -541,9 +544,12 @@ namespace cli {
 std::uint64_t EstimateSequenceBytes(const study::ExperimentConfig& config) {
   const std::uint64_t pixels = std::uint64_t(config.width) * std::uint64_t(config.height);
   const auto frames = static_cast<std::uint64_t>(config.sequence.frames);
-  // Every frame's ground truth is kept as scoring reads it (RGBA colour, edge mask) and as
-  // displayed (3 codes), and the one being rendered whole (colour, coverage, edge).
-  const std::uint64_t groundTruths = frames * (sizeof(glm::vec4) + sizeof(float) + 3) + sizeof(glm::vec3) + sizeof(float) + 1;
+  // Every frame's ground truth is kept as scoring reads it (RGBA colour, edge mask, its half of
+  // the metrics) and as displayed (3 codes), and the one being rendered whole (colour, coverage,
+  // edge).
+  const std::uint64_t groundTruths =
+      frames * (sizeof(glm::vec4) + sizeof(float) + passes::ScoringReference::kBytesPerPixel + 3) +
+      sizeof(glm::vec3) + sizeof(float) + 1;
   // Groups run one at a time (study/sequence_study.cpp): the largest group's pipeline, object ids,
   // ages and reprojection, its temporal passes' instances (every strategy, alive for the
   // sequence), one spatial pass run at a time with the first strategy's output kept for the

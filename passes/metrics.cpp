@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -46,14 +47,19 @@ void CheckImage(const ImageView& image, const std::string& role) {
   }
 }
 
-std::size_t CheckPair(const ImageView& test, const ImageView& reference) {
+// A test image against a reference of width x height (already checked).
+std::size_t CheckTest(const ImageView& test, int width, int height) {
   CheckImage(test, "test");
-  CheckImage(reference, "reference");
-  if (test.width != reference.width || test.height != reference.height) {
+  if (test.width != width || test.height != height) {
     throw std::invalid_argument("metrics: the test image is " + SizeText(test.width, test.height) +
-                                " but the reference is " + SizeText(reference.width, reference.height));
+                                " but the reference is " + SizeText(width, height));
   }
   return test.pixels.size();
+}
+
+std::size_t CheckPair(const ImageView& test, const ImageView& reference) {
+  CheckImage(reference, "reference");
+  return CheckTest(test, reference.width, reference.height);
 }
 
 void CheckMask(PixelMask mask, std::size_t pixels) {
@@ -461,31 +467,37 @@ double MaskedMean(std::span<const float> map, PixelMask mask) {
   return sum / static_cast<double>(count);
 }
 
-std::vector<float> SquaredErrorMap(const ImageView& test, const ImageView& reference) {
-  std::vector<float> map(CheckPair(test, reference));
+namespace {
+
+// The sRGB encoding PSNR and SSIM read, per pixel.
+std::vector<glm::vec3> EncodedImage(const ImageView& image) {
+  std::vector<glm::vec3> encoded(image.pixels.size());
+  const int w = image.width;
+  ForEachRowBlock(image.height, [&](int y0, int y1) {
+    for (std::size_t i = PixelCount(w, y0); i < PixelCount(w, y1); ++i) encoded[i] = sim::EncodeSrgb(glm::vec3(image.pixels[i]));
+  });
+  return encoded;
+}
+
+std::vector<float> SquaredErrorAgainst(const ImageView& test, std::span<const glm::vec3> reference) {
+  std::vector<float> map(test.pixels.size());
   const int w = test.width;
   ForEachRowBlock(test.height, [&](int y0, int y1) {
     for (std::size_t i = PixelCount(w, y0); i < PixelCount(w, y1); ++i) {
-      const glm::vec3 d = sim::EncodeSrgb(glm::vec3(test.pixels[i])) - sim::EncodeSrgb(glm::vec3(reference.pixels[i]));
+      const glm::vec3 d = sim::EncodeSrgb(glm::vec3(test.pixels[i])) - reference[i];
       map[i] = (d.r * d.r + d.g * d.g + d.b * d.b) / 3.0f;
     }
   });
   return map;
 }
 
-double Psnr(const ImageView& test, const ImageView& reference, PixelMask mask) {
-  const std::vector<float> squared = SquaredErrorMap(test, reference);
-  return PsnrFromMse(mask.empty() ? Mean(squared) : MaskedMean(squared, mask));
-}
-
-MetricMap Ssim(const ImageView& test, const ImageView& reference) {
-  CheckPair(test, reference);
+MetricMap SsimAgainst(const ImageView& test, std::span<const glm::vec3> reference) {
   const int w = test.width, h = test.height;
   std::vector<float> lumaTest(test.pixels.size()), lumaReference(test.pixels.size());
   ForEachRowBlock(h, [&](int y0, int y1) {
     for (std::size_t i = PixelCount(w, y0); i < PixelCount(w, y1); ++i) {
       lumaTest[i] = sim::Rec709Luma(sim::EncodeSrgb(glm::vec3(test.pixels[i])));
-      lumaReference[i] = sim::Rec709Luma(sim::EncodeSrgb(glm::vec3(reference.pixels[i])));
+      lumaReference[i] = sim::Rec709Luma(reference[i]);
     }
   });
   const Kernel<double> window = SsimWindow();
@@ -522,6 +534,23 @@ MetricMap Ssim(const ImageView& test, const ImageView& reference) {
   return result;
 }
 
+}  // namespace
+
+std::vector<float> SquaredErrorMap(const ImageView& test, const ImageView& reference) {
+  CheckPair(test, reference);
+  return SquaredErrorAgainst(test, EncodedImage(reference));
+}
+
+double Psnr(const ImageView& test, const ImageView& reference, PixelMask mask) {
+  const std::vector<float> squared = SquaredErrorMap(test, reference);
+  return PsnrFromMse(mask.empty() ? Mean(squared) : MaskedMean(squared, mask));
+}
+
+MetricMap Ssim(const ImageView& test, const ImageView& reference) {
+  CheckPair(test, reference);
+  return SsimAgainst(test, EncodedImage(reference));
+}
+
 double PixelsPerDegree(const FlipSettings& settings) {
   CheckFlipSettings(settings);
   // aa-facts §9.1: PPD = distance * (resolution / monitor width) * pi / 180.
@@ -529,11 +558,37 @@ double PixelsPerDegree(const FlipSettings& settings) {
          std::numbers::pi / 180.0;
 }
 
-MetricMap Flip(const ImageView& test, const ImageView& reference, const FlipSettings& settings) {
-  CheckPair(test, reference);
-  const FlipFilters filters = MakeFlipFilters(PixelsPerDegree(settings));
-  const int w = test.width, h = test.height;
+namespace {
 
+// FLIP's per-image half over a whole image: the filtered colour in Hunt-adjusted L*a*b* and the
+// feature magnitudes, per pixel (the same rows FlipRow gives a band).
+struct FlipImage {
+  std::vector<float> l, a, b, edge, point;
+};
+
+FlipImage FlipImageOf(const ImageView& image, const FlipFilters& filters) {
+  const int w = image.width, h = image.height;
+  FlipImage out;
+  for (std::vector<float>* v : {&out.l, &out.a, &out.b, &out.edge, &out.point}) v->resize(PixelCount(w, h));
+  ForEachBand<FlipScratch>(h, [&](FlipScratch& s, int y0, int y1) {
+    const auto [lo, hi] = ApronRows(y0, y1, filters.apron, h);
+    FlipRows& rows = s.images[0];
+    LoadFlipRows(image, lo, hi, rows);
+    for (int row = y0; row < y1; ++row) {
+      FlipRow(rows, filters, row, s);
+      const std::size_t at = PixelCount(w, row);
+      std::copy(rows.l.begin(), rows.l.end(), out.l.begin() + static_cast<std::ptrdiff_t>(at));
+      std::copy(rows.a.begin(), rows.a.end(), out.a.begin() + static_cast<std::ptrdiff_t>(at));
+      std::copy(rows.b.begin(), rows.b.end(), out.b.begin() + static_cast<std::ptrdiff_t>(at));
+      std::copy(rows.edge.begin(), rows.edge.end(), out.edge.begin() + static_cast<std::ptrdiff_t>(at));
+      std::copy(rows.point.begin(), rows.point.end(), out.point.begin() + static_cast<std::ptrdiff_t>(at));
+    }
+  });
+  return out;
+}
+
+MetricMap FlipAgainst(const ImageView& test, const FlipImage& reference, const FlipFilters& filters) {
+  const int w = test.width, h = test.height;
   // aa-facts §9.1: the largest colour difference, Hunt-adjusted green to blue, through the same
   // exponent; errors up to pc*cmax map linearly to [0, pt], the rest to (pt, 1].
   const float cMax = std::pow(HyAb(LinearRgbToHuntLab({0.0f, 1.0f, 0.0f}), LinearRgbToHuntLab({0.0f, 0.0f, 1.0f})), kFlipQc);
@@ -544,19 +599,19 @@ MetricMap Flip(const ImageView& test, const ImageView& reference, const FlipSett
   ForEachBand<FlipScratch>(h, [&](FlipScratch& s, int y0, int y1) {
     const auto [lo, hi] = ApronRows(y0, y1, filters.apron, h);
     LoadFlipRows(test, lo, hi, s.images[0]);
-    LoadFlipRows(reference, lo, hi, s.images[1]);
     for (int row = y0; row < y1; ++row) {
       FlipRow(s.images[0], filters, row, s);
-      FlipRow(s.images[1], filters, row, s);
       const FlipRows& t = s.images[0];
-      const FlipRows& r = s.images[1];
-      float* out = result.map.data() + PixelCount(w, row);
+      const std::size_t at = PixelCount(w, row);
+      float* out = result.map.data() + at;
       for (std::size_t x = 0; x < static_cast<std::size_t>(w); ++x) {
-        const float colour = std::pow(HyAb({t.l[x], t.a[x], t.b[x]}, {r.l[x], r.a[x], r.b[x]}), kFlipQc);
+        const std::size_t r = at + x;
+        const float colour = std::pow(
+            HyAb({t.l[x], t.a[x], t.b[x]}, {reference.l[r], reference.a[r], reference.b[r]}), kFlipQc);
         const float colourError = colour < cutoff ? kFlipPt / cutoff * colour
                                                   : kFlipPt + (colour - cutoff) / (cMax - cutoff) * (1.0f - kFlipPt);
-        const float edgeDiff = std::fabs(t.edge[x] - r.edge[x]);
-        const float pointDiff = std::fabs(t.point[x] - r.point[x]);
+        const float edgeDiff = std::fabs(t.edge[x] - reference.edge[r]);
+        const float pointDiff = std::fabs(t.point[x] - reference.point[r]);
         const float featureError = std::pow(featureNorm * std::max(edgeDiff, pointDiff), kFlipQf);
         out[x] = std::pow(colourError, 1.0f - featureError);
       }
@@ -566,13 +621,36 @@ MetricMap Flip(const ImageView& test, const ImageView& reference, const FlipSett
   return result;
 }
 
-QualityResult ScoreWithMaps(const ImageView& test, const ImageView& reference, PixelMask edgeMask,
-                            const FlipSettings& settings) {
-  CheckMask(edgeMask, CheckPair(test, reference));
+}  // namespace
+
+MetricMap Flip(const ImageView& test, const ImageView& reference, const FlipSettings& settings) {
+  CheckPair(test, reference);
+  const FlipFilters filters = MakeFlipFilters(PixelsPerDegree(settings));
+  return FlipAgainst(test, FlipImageOf(reference, filters), filters);
+}
+
+struct ScoringReference::Prepared {
+  int width, height;
+  std::vector<glm::vec3> encoded;
+  FlipFilters filters;
+  FlipImage flip;
+};
+
+ScoringReference::ScoringReference(const ImageView& reference, const FlipSettings& settings) {
+  CheckImage(reference, "reference");
+  FlipFilters filters = MakeFlipFilters(PixelsPerDegree(settings));
+  FlipImage flip = FlipImageOf(reference, filters);
+  prepared_ = std::make_shared<const Prepared>(
+      Prepared{reference.width, reference.height, EncodedImage(reference), std::move(filters), std::move(flip)});
+}
+
+QualityResult ScoreWithMaps(const ImageView& test, const ScoringReference& reference, PixelMask edgeMask) {
+  const ScoringReference::Prepared& prepared = *reference.prepared_;
+  CheckMask(edgeMask, CheckTest(test, prepared.width, prepared.height));
   QualityResult result{};
-  result.maps.squaredError = SquaredErrorMap(test, reference);
-  MetricMap ssim = Ssim(test, reference);
-  MetricMap flip = Flip(test, reference, settings);
+  result.maps.squaredError = SquaredErrorAgainst(test, prepared.encoded);
+  MetricMap ssim = SsimAgainst(test, prepared.encoded);
+  MetricMap flip = FlipAgainst(test, prepared.flip, prepared.filters);
 
   QualityScores& s = result.scores;
   s.psnr = PsnrFromMse(Mean(result.maps.squaredError));
@@ -587,6 +665,12 @@ QualityResult ScoreWithMaps(const ImageView& test, const ImageView& reference, P
   for (float& v : result.maps.ssimError) v = 1.0f - v;
   result.maps.flip = std::move(flip.map);
   return result;
+}
+
+QualityResult ScoreWithMaps(const ImageView& test, const ImageView& reference, PixelMask edgeMask,
+                            const FlipSettings& settings) {
+  CheckPair(test, reference);
+  return ScoreWithMaps(test, ScoringReference(reference, settings), edgeMask);
 }
 
 }  // namespace passes

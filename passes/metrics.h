@@ -6,6 +6,7 @@
 // Definitions, constants, colour spaces and border handling: docs/metrics.md.
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -81,8 +82,25 @@ struct QualityResult {
   QualityMaps maps;
 };
 
+// The reference's half of every metric (its sRGB encoding; FLIP's filtered colour and features),
+// computed once: a study scores every mode and pass against one ground truth, and the reference
+// half is independent of the image scored. Scores are bit-identical to scoring against the
+// reference image itself. Keeps no reference to the image; copies share the prepared data.
+class ScoringReference {
+ public:
+  explicit ScoringReference(const ImageView& reference, const FlipSettings& settings = {});
+  // What it keeps per reference pixel, for memory estimates: the encoded RGB and FLIP's five planes.
+  static constexpr std::size_t kBytesPerPixel = 3 * sizeof(float) + 5 * sizeof(float);
+
+ private:
+  friend QualityResult ScoreWithMaps(const ImageView&, const ScoringReference&, PixelMask);
+  struct Prepared;
+  std::shared_ptr<const Prepared> prepared_;
+};
+
 // Every metric overall and over the edge mask (the pixels the ground truth shows as partially
 // covered; the caller supplies it). The edge mask is required and must select at least one pixel.
+QualityResult ScoreWithMaps(const ImageView& test, const ScoringReference& reference, PixelMask edgeMask);
 QualityResult ScoreWithMaps(const ImageView& test, const ImageView& reference, PixelMask edgeMask,
                             const FlipSettings& settings = {});
 

@@ -31,6 +31,7 @@ StudyGroundTruth ToStudyGroundTruth(scenes::GroundTruthImage image) {
   for (std::size_t i = 0; i < truth.image.colour.size(); ++i) {
     truth.colour.Texels()[i] = glm::vec4(truth.image.colour[i], 1.0f);
   }
+  truth.scoring.emplace(passes::ViewOf(truth.colour));
   return truth;
 }
 
@@ -57,7 +58,9 @@ StudyGroundTruth RenderGroundTruth(const scenes::Scene& scene, const ExperimentC
 
 // Without edge pixels the edge scores have nothing to average: NaN, shown as "n/a" and null.
 passes::QualityResult ScoreAgainstGroundTruth(const sim::Texture2D<glm::vec4>& image, const StudyGroundTruth& groundTruth) {
-  const passes::ImageView test = passes::ViewOf(image), reference = passes::ViewOf(groundTruth.colour);
+  const passes::ImageView test = passes::ViewOf(image);
+  const passes::ScoringReference reference =
+      groundTruth.scoring ? *groundTruth.scoring : passes::ScoringReference(passes::ViewOf(groundTruth.colour));
   if (passes::CountSelected(groundTruth.edgeMask) > 0) {
     return passes::ScoreWithMaps(test, reference, groundTruth.edgeMask);
   }

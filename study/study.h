@@ -104,6 +104,9 @@ struct StudyGroundTruth {
   scenes::GroundTruthImage image;
   sim::Texture2D<glm::vec4> colour{"ground truth", 1, 1};  // image.colour as RGBA, for the metrics
   std::vector<float> edgeMask;  // the metrics' mask: 1 on edge pixels
+  // The metrics' half that depends on the ground truth alone, prepared once for every image
+  // scored against it.
+  std::optional<passes::ScoringReference> scoring;
   bool cacheHit = false;
   std::filesystem::path cacheFile;  // empty with --no-cache
   double seconds = 0.0;

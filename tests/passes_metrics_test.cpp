@@ -383,6 +383,36 @@ TEST(PassesMetrics, MismatchedSizesAreOneLineErrors) {
   EXPECT_THROW((void)Flip(lying, lying), std::invalid_argument);
 }
 
+// A study prepares the ground truth's half of the metrics once and scores every image against
+// it: each image scored through one prepared reference gets the maps and scores of the metrics
+// computed from the two images, bit for bit, and a size mismatch is still a one-line error.
+TEST(PassesMetrics, APreparedReferenceScoresLikeTheReferenceImage) {
+  const int w = 97, h = 61;
+  const Image reference = RandomImage(w, h, 11);
+  const ScoringReference prepared(reference.View());
+  const std::vector<float> edges = ColumnMask(w, h, 20, 30);
+  for (const std::uint64_t seed : {12u, 13u, 14u}) {
+    Image test = reference;
+    raster::testing::Random rng(seed);
+    for (glm::vec4& p : test.pixels) p += glm::vec4(static_cast<float>(rng.Uniform(-0.1, 0.1)));
+    const QualityResult scored = ScoreWithMaps(test.View(), prepared, edges);
+    EXPECT_EQ(scored.maps.squaredError, SquaredErrorMap(test.View(), reference.View())) << seed;
+    EXPECT_EQ(scored.maps.flip, Flip(test.View(), reference.View()).map) << seed;
+    const MetricMap ssim = Ssim(test.View(), reference.View());
+    EXPECT_EQ(scored.scores.ssim, ssim.mean) << seed;
+    EXPECT_EQ(scored.scores.psnr, Psnr(test.View(), reference.View())) << seed;
+    EXPECT_EQ(scored.scores.edgeFlip, MaskedMean(scored.maps.flip, edges)) << seed;
+    EXPECT_GT(scored.scores.flip, 0.0) << seed;
+  }
+  const Image other = RandomImage(w + 1, h, 15);
+  try {
+    (void)ScoreWithMaps(other.View(), prepared, std::vector<float>(static_cast<std::size_t>((w + 1) * h), 1.0f));
+    ADD_FAILURE() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "metrics: the test image is 98x61 but the reference is 97x61");
+  }
+}
+
 TEST(PassesMetrics, MapsAreBitIdenticalForOneAndTwoThreads) {
   const int w = 203, h = 117;
   Image reference = RandomImage(w, h, 7), test = reference;
