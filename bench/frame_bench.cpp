@@ -69,8 +69,8 @@ double MsSince(std::chrono::steady_clock::time_point start) {
 }
 
 // Pass instances per registered pass and strategy. The timed frames reuse one set, as a renderer
-// keeps its passes and their render targets from frame to frame; the determinism check makes a
-// fresh set, so reuse must not change a result.
+// keeps its passes and their render targets from frame to frame; the determinism check runs one
+// frame on a fresh set with one thread and another with all threads.
 using PassInstances = std::vector<std::vector<std::unique_ptr<passes::Pass>>>;
 
 PassInstances MakeInstances() {
@@ -250,7 +250,10 @@ int RunBench(const BenchOptions& options) {
       }
     }
   }
-  const bool deterministic = SameRun(CaptureFrame(options, geometry, gpu, 1), last);
+  // Fresh instances on both sides: the timed frames' temporal passes carry history from the frames
+  // before, which a single fresh frame cannot have.
+  const bool deterministic =
+      SameRun(CaptureFrame(options, geometry, gpu, 1), CaptureFrame(options, geometry, gpu, options.threads));
   bool identicalImages = true;
   const sim::FrameSettings settings;
   std::printf("aasim frame bench: %s (%zu triangles), %dx%d, %s, %s, %d threads, median of %d frames\n",
