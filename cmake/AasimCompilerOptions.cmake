@@ -9,6 +9,11 @@ if(AASIM_WERROR)
 endif()
 
 add_library(aasim_opt INTERFACE)
+# The passes reproduce reference shaders' float32 arithmetic, where a*b + c is two roundings
+# (aa-facts §1.9), and the 8-bit conversions of sim/formats.h round through a float add: no
+# contraction into fused multiply-adds, in any target, by any compiler (clang contracts by
+# default, even when it folds constants on a target without FMA instructions).
+target_compile_options(aasim_opt INTERFACE -ffp-contract=off)
 if(AASIM_SANITIZE)
   # -g1: line tables are all a sanitizer report's stack trace needs; full debug info only makes
   # the CI's sanitized build slower to compile and link.

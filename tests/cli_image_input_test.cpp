@@ -122,7 +122,8 @@ TEST_F(CliImageInputTest, ExrIsReadFromItsDataWindowInAnyPixelType) {
   for (int y = 0; y < 4; ++y) {
     for (int x = 0; x < 5; ++x) {
       const std::size_t at = (std::size_t(y) * 5 + std::size_t(x)) * 4;
-      const glm::vec4 expected(float(values[at]), float(values[at + 1]), float(values[at + 2]), float(values[at + 3]));
+      const glm::vec4 expected{static_cast<float>(values[at]), static_cast<float>(values[at + 1]),
+                               static_cast<float>(values[at + 2]), static_cast<float>(values[at + 3])};
       EXPECT_EQ(image.colour.At(x, y), expected) << x << "," << y;
     }
   }

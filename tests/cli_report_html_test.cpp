@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -61,7 +62,7 @@ TEST(CliReportHtml, EmbedsEverythingAndFetchesNothing) {
 
 TEST(CliReportHtml, RefusesChartDataItCannotDraw) {
   Report report = SmallReport();
-  report.sections[0].charts[0].values[1][0] = NAN;
+  report.sections[0].charts[0].values[1][0] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(RenderHtml(report), std::invalid_argument);
   report = SmallReport();
   report.sections[0].charts[0].values[0].pop_back();

@@ -34,7 +34,8 @@ float NearestE4(std::uint16_t h, int droppedBits) {
   const auto step = static_cast<std::uint16_t>(1u << droppedBits);
   const auto below = static_cast<std::uint16_t>(h & ~(step - 1u));
   const auto above = static_cast<std::uint16_t>(below + step);
-  const double value = sim::HalfToFloat(h), low = sim::HalfToFloat(below), high = sim::HalfToFloat(above);
+  const double value = static_cast<double>(sim::HalfToFloat(h)), low = static_cast<double>(sim::HalfToFloat(below)),
+               high = static_cast<double>(sim::HalfToFloat(above));
   return static_cast<float>(value - low < high - value ? low : high);
 }
 
@@ -252,7 +253,8 @@ TEST(Cmaa2Golden, OddSizedRandomImagesGiveBitIdenticalImagesUnderBothStrategies)
   std::mt19937 random(7);
   std::uniform_int_distribution<int> level(0, 2);
   std::uint64_t zShapes = 0;
-  for (const auto& [width, height] : {std::pair{37, 23}, {1, 9}, {9, 1}, {64, 3}}) {
+  for (const auto& size : {std::pair{37, 23}, {1, 9}, {9, 1}, {64, 3}}) {
+    const int width = size.first, height = size.second;
     std::vector<int> codes(static_cast<std::size_t>(width * height));
     for (int& code : codes) code = level(random) * 120;
     const sim::Texture2D<glm::vec4> image =
@@ -356,7 +358,7 @@ TEST(Cmaa2Presets, TheThresholdDecidesWhetherAWeakCornerIsACandidate) {
   const auto inside = [](int x, int y) { return x >= 4 && x <= 11 && y >= 4 && y <= 11; };
   const sim::Texture2D<glm::vec4> image = GreyImage(16, 16, [&](int x, int y) { return inside(x, y) ? 100 : 60; });
   // sqrt of the decoded linear values, the luma CMAA2 compares (grey: the weights sum to 1).
-  const double contrast = std::sqrt(sim::Srgb8ToFloat(100)) - std::sqrt(sim::Srgb8ToFloat(60));
+  const double contrast = static_cast<double>(std::sqrt(sim::Srgb8ToFloat(100)) - std::sqrt(sim::Srgb8ToFloat(60)));
   ASSERT_GT(contrast, 0.10);
   ASSERT_LT(contrast, 0.15);
   EXPECT_EQ(RunCmaa2(image, Strategy::DeferredQueue, "cmaa2:preset=high").Layer("candidates", 4, 4), 1.0f);

@@ -300,9 +300,9 @@ TEST(FxaaThresholds, ARangeExactlyAtTheMinimumJoinsTheWorkSet) {
   const sim::Texture2D<glm::vec4> image = GreyImage(16, 8, [](int x, int) { return x < 8 ? 0 : 16; });
   const float range = sim::Unorm8ToFloat(16) - sim::Unorm8ToFloat(0);
   PassSettings settings = ResolvePass("fxaa:edge_threshold=0.063").settings;
-  settings.Set("edge_threshold_min", range);
+  settings.Set("edge_threshold_min", static_cast<double>(range));
   EXPECT_EQ(RunFxaa(image, settings).output.workItems, 16u);
-  settings.Set("edge_threshold_min", std::nextafter(range, 1.0f));
+  settings.Set("edge_threshold_min", static_cast<double>(std::nextafter(range, 1.0f)));
   EXPECT_EQ(RunFxaa(image, settings).output.workItems, 0u);
 }
 
@@ -318,9 +318,9 @@ TEST(FxaaThresholds, ARangeExactlyAtTheScaledMaximumJoinsTheWorkSet) {
   float above = atRange;
   while (rangeMax * above <= range) above = std::nextafter(above, 1.0f);
   PassSettings settings = ResolvePass("fxaa").settings;
-  settings.Set("edge_threshold", atRange);
+  settings.Set("edge_threshold", static_cast<double>(atRange));
   EXPECT_EQ(RunFxaa(image, settings).output.workItems, 16u);
-  settings.Set("edge_threshold", above);
+  settings.Set("edge_threshold", static_cast<double>(above));
   EXPECT_EQ(RunFxaa(image, settings).output.workItems, 0u);
 }
 

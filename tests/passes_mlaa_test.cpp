@@ -82,7 +82,8 @@ int ExpectHorizontalBlends(const MlaaRun& run, const Codes& code, int width, int
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       if (run.At("weights-v", x, y, 0) != 0.0f || run.At("weights-v", x, y, 1) != 0.0f) continue;
-      const double up = run.At("weights-h", x, y, 0), down = run.At("weights-h", x, y, 1);
+      const double up = static_cast<double>(run.At("weights-h", x, y, 0));
+      const double down = static_cast<double>(run.At("weights-h", x, y, 1));
       EXPECT_TRUE(up == 0.0 || down == 0.0) << "one edge per pixel in these images";
       int expected = code(x, y);
       if (up > 0.0) expected = BlendedCode(code(x, y), code(x, y - 1), up);

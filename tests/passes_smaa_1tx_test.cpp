@@ -73,7 +73,7 @@ TEST(SmaaOneTx, ABrightPixelBlendsWithItsClampedHistoryByHand) {
       GreyImage(16, 16, [](int, int) { return 100; }),
       GreyImage(16, 16, [](int x, int y) { return x == 8 && y == 8 ? 120 : 100; })};
   const std::vector<PassOutput> outputs = RunFrames(frames, Strategy::StencilCulled);
-  const double lo = sim::Srgb8ToFloat(100), hi = sim::Srgb8ToFloat(120);
+  const double lo = static_cast<double>(sim::Srgb8ToFloat(100)), hi = static_cast<double>(sim::Srgb8ToFloat(120));
   const double tap = (hi + 3.0 * lo) / 4.0;         // every diagonal tap; the range is [tap, tap]
   const double contrast = std::fabs(tap - hi);      // w_k
   const double w = 1.0 / (2.0 * (1.0 - contrast) + 6.0 * contrast);

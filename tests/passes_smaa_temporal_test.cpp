@@ -172,7 +172,8 @@ TEST(SmaaT2xResolve, TheOutputBlendsWithTheHandComputedWeight) {
   const double w = 0.5 * (1.0 - 30.0 * std::sqrt(a * a / 5.0));
   ASSERT_GT(w, 0.05);
   ASSERT_LT(w, 0.1);
-  const double current = sim::Srgb8ToFloat(kSecond), previous = sim::Srgb8ToFloat(kFirst);
+  const double current = static_cast<double>(sim::Srgb8ToFloat(kSecond));
+  const double previous = static_cast<double>(sim::Srgb8ToFloat(kFirst));
   const int expected = sim::FloatToSrgb8(static_cast<float>(current + w * (previous - current)));
   for (const char* spec : {"smaa-t2x", "smaa-t2x:reprojection=0"}) {
     const SequenceRun run = RunSequence(spec, 2, flat, Strategy::StencilCulled);

@@ -113,7 +113,7 @@ double CurrentValue(const Frame& frame, int x, int y, bool reconstruction) {
   double sum = 0.0, weights = 0.0;
   for (int oy = -1; oy <= 1; ++oy) {
     for (int ox = -1; ox <= 1; ++ox) {
-      const double dx = ox + frame.jitter.x, dy = oy + frame.jitter.y;
+      const double dx = ox + static_cast<double>(frame.jitter.x), dy = oy + static_cast<double>(frame.jitter.y);
       const double w = std::exp(-2.29 * (dx * dx + dy * dy));
       sum += w * static_cast<double>(frame.colour.At(std::clamp(x + ox, 0, kSide - 1), std::clamp(y + oy, 0, kSide - 1)).r);
       weights += w;

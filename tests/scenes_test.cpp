@@ -574,8 +574,9 @@ TEST(SceneGltf, DecodesEmbeddedPngBaseColourTexturesFromSrgb) {
                                            10, 20, 30, 40,   200, 100, 50, 0};
   // 2x1 grey + alpha, 16 bit.
   const std::vector<std::uint16_t> greyAlpha = {32768, 65535, 1000, 0};
-  for (const auto& [channels, bits, samples] :
-       {std::tuple{4, 8, rgba}, std::tuple{2, 16, greyAlpha}}) {
+  for (const auto& png : {std::tuple{4, 8, rgba}, std::tuple{2, 16, greyAlpha}}) {
+    const int channels = std::get<0>(png), bits = std::get<1>(png);
+    const std::vector<std::uint16_t>& samples = std::get<2>(png);
     const int width = 2;
     const int height = static_cast<int>(samples.size()) / (width * channels);
     GltfWriter writer = TexturedSquare(

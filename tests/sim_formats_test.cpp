@@ -240,7 +240,7 @@ TEST(SimFormats, Float11And10StoresRoundTowardZeroAndClampNegativesToZero) {
       EXPECT_EQ(s.encode(value), bits) << bits;
     }
     for (const float v : RandomFloats(static_cast<std::uint32_t>(s.fraction))) {
-      ASSERT_EQ(s.encode(v), v < 0 ? 0u : ReferenceRoundTowardZero(v, s.fraction)) << v;
+      ASSERT_EQ(s.encode(v), v < 0 ? 0u : ReferenceRoundTowardZero(static_cast<long double>(v), s.fraction)) << v;
     }
     EXPECT_EQ(s.decode(static_cast<std::uint16_t>(largest)), s.fraction == 6 ? 65024.0f : 64512.0f);
     EXPECT_EQ(s.encode(1e9f), largest);

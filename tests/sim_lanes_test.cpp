@@ -256,7 +256,8 @@ TEST(SimLanes, DrawDerivativesOfAnInterpolatedAttributeMatchItsScreenGradient) {
   const std::vector<std::uint32_t> indices = {0, 1, 2};
   // Plane through (x_i, y_i, a_i): Cramer's rule on the edge vectors from vertex 0.
   const glm::dvec2 e1 = p[1] - p[0], e2 = p[2] - p[0];
-  const double da1 = attribute[1] - attribute[0], da2 = attribute[2] - attribute[0];
+  const double da1 = static_cast<double>(attribute[1] - attribute[0]);
+  const double da2 = static_cast<double>(attribute[2] - attribute[0]);
   const double det = e1.x * e2.y - e2.x * e1.y;
   const double gradX = (da1 * e2.y - da2 * e1.y) / det;
   const double gradY = (e1.x * da2 - e2.x * da1) / det;

@@ -45,7 +45,7 @@ struct ReferenceCoord {
 };
 ReferenceCoord Reference(float u, int size) {
   // The double product is exact (24 x 22 bits); rounding it to float is the float32 multiply.
-  const double product = static_cast<float>(static_cast<double>(u) * (256.0 * size));
+  const auto product = static_cast<double>(static_cast<float>(static_cast<double>(u) * (256.0 * size)));
   long s = static_cast<long>(std::floor(product));
   const double fraction = product - std::floor(product);
   if (fraction > 0.5 || (fraction == 0.5 && s % 2 != 0)) ++s;

@@ -57,7 +57,7 @@ const sim::KernelInfo kApplyKernel{
     .source = "hand count of DeferredColorApply2x2CS: location and head loads (~10), the list walk (~12 per "
               "item, ~4 items), the mean (~8), LINEAR_to_SRGB (3 pow, ~30) and the packed store (~12)"};
 
-constexpr WorkSetKernels kKernels{
+const WorkSetKernels kKernels{
     .detectDispatch = kEdgeDispatch,
     .consumeDispatch = kCandidatesDispatch,
     .detectPixel = kDetectPixelKernel,

@@ -223,7 +223,7 @@ class FilmicT2xPass final : public Pass {
     const int width = target.Width(), height = target.Height();
     const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
     const TemporalSettings s = settings_;
-    const float historyWeight = HistoryWeight(frameSeconds, s.convergenceTime);
+    const float historyWeight = HistoryWeight(frameSeconds, static_cast<double>(s.convergenceTime));
     auto makeDetect = [&](sim::Dispatch& d, auto) {
       const sim::TextureView<glm::vec4> resolved = d.Read(*resolved_), history = d.Read(historyTarget);
       const sim::TextureView<glm::vec2> motion = d.Read(velocity);
@@ -311,7 +311,7 @@ std::vector<SettingInfo> FilmicT2xSettings() {
       {.name = "colour_weight_scale", .defaultValue = 4, .min = 0, .max = 64,
        .doc = "colour weight = saturate(1 - SAD x this) over a 2x2 gamma-luma block: a mean change of 1/16 per "
               "texel rejects (no value in the seed)"},
-      {.name = "reprojection_weight_scale", .defaultValue = smaa::kReprojectionWeightScale, .min = 0, .max = 80,
+      {.name = "reprojection_weight_scale", .defaultValue = static_cast<double>(smaa::kReprojectionWeightScale), .min = 0, .max = 80,
        .doc = "SMAA_REPROJECTION_WEIGHT_SCALE of the supersampling's velocity weight (SMAA.hlsl: 30)"},
   };
   settings.insert(settings.end(), temporal.begin(), temporal.end());

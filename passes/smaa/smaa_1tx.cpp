@@ -111,10 +111,10 @@ class OneTxPass final : public Pass {
 
 std::vector<SettingInfo> OneTxSettings() {
   std::vector<SettingInfo> settings = SettingsOf(Variant::Luma);
-  settings.push_back({.name = "k_lowfreq", .defaultValue = kOneTxLowFrequencyFrames, .min = 1, .max = 64,
+  settings.push_back({.name = "k_lowfreq", .defaultValue = static_cast<double>(kOneTxLowFrequencyFrames), .min = 1, .max = 64,
                       .doc = "K_lowfreq: frames kept in history where the local contrast is low (seed 000 gives no "
                              "value; CryEngine's r_AntialiasingTAAFalloffLowFreq 2.0)"});
-  settings.push_back({.name = "k_hifreq", .defaultValue = kOneTxHighFrequencyFrames, .min = 1, .max = 64,
+  settings.push_back({.name = "k_hifreq", .defaultValue = static_cast<double>(kOneTxHighFrequencyFrames), .min = 1, .max = 64,
                       .doc = "K_hifreq: frames kept in history where the local contrast is high (CryEngine's "
                              "r_AntialiasingTAAFalloffHiFreq 6.0)"});
   return settings;

@@ -177,7 +177,7 @@ std::vector<SettingInfo> TemporalSettings() {
   settings.push_back({.name = "reprojection", .defaultValue = 1, .min = 0, .max = 1, .integer = true,
                       .doc = "SMAA_REPROJECTION: fetch the previous frame along the velocity and weight it by the "
                              "velocity lengths' difference (on: the demo's Temporal Reprojection default)"});
-  settings.push_back({.name = "reprojection_weight_scale", .defaultValue = kReprojectionWeightScale, .min = 0,
+  settings.push_back({.name = "reprojection_weight_scale", .defaultValue = static_cast<double>(kReprojectionWeightScale), .min = 0,
                       .max = 80,
                       .doc = "SMAA_REPROJECTION_WEIGHT_SCALE: how fast a velocity difference removes the previous "
                              "frame (SMAA.hlsl: 30, range [0, 80])"});

@@ -171,7 +171,11 @@ PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
   const int width = frame.Width(), height = frame.Height();
   PassOutput cmaa = cmaa2_->Run(machine, frame, strategy);
 
-  const auto [colour, edges] = StoreCmaaOutputs(cmaa, width, height);
+  // Named references rather than a structured binding: a lambda may capture them (C++20 lets it
+  // capture a binding, clang 14 does not yet).
+  const auto outputs = StoreCmaaOutputs(cmaa, width, height);
+  const sim::Texture2D<glm::vec4>& colour = outputs.first;
+  const sim::Texture2D<std::uint32_t>& edges = outputs.second;
 
   const int previous = 1 - current_;
   const bool resized = !history_[previous] || history_[previous]->Width() != width || history_[previous]->Height() != height;
