@@ -28,6 +28,7 @@
 #include "raster/sample_pattern.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
+#include "sim/host_memory.h"
 
 namespace {
 
@@ -305,6 +306,7 @@ int RunBench(const BenchOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sim::KeepFreedHostMemory();  // frame-sized buffers reused, not re-faulted (sim/host_memory.h)
   CLI::App app{
       "Frame benchmark: the frame pipeline and every registered post pass (each dispatch strategy) at "
       "1920x1080; exits 1 unless the strategies' images match and 1 thread and all threads give "

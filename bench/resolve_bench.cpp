@@ -25,6 +25,7 @@
 #include "sim/eqaa_resolve.h"
 #include "sim/frame.h"
 #include "study/frame_scene.h"
+#include "sim/host_memory.h"
 
 namespace {
 
@@ -143,6 +144,7 @@ int RunBench(const BenchOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sim::KeepFreedHostMemory();  // frame-sized buffers reused, not re-faulted (sim/host_memory.h)
   CLI::App app{"Resolve benchmark: the box resolve and every registered resolve of the EQAA surface on every mode "
                "it reads at 1920x1080; exits 1 unless one thread and all threads give identical images and counters",
                "aasim_resolve_bench"};

@@ -24,6 +24,7 @@
 #include "scenes/motion.h"
 #include "scenes/scene.h"
 #include "study/sequence.h"
+#include "sim/host_memory.h"
 
 namespace {
 
@@ -167,6 +168,7 @@ int RunBench(const BenchOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sim::KeepFreedHostMemory();  // frame-sized buffers reused, not re-faulted (sim/host_memory.h)
   CLI::App app{"Temporal benchmark: every registered temporal pass over a 1920x1080 sequence on its jitter schedule, "
                "per frame and strategy; exits 1 unless the strategies' images match on every frame and 1 thread "
                "gives the same sequence",

@@ -24,6 +24,7 @@
 #include "cli/run_options.h"
 #include "cli/smaa_tables_command.h"
 #include "raster/raster_error.h"
+#include "sim/host_memory.h"
 
 namespace {
 
@@ -150,6 +151,7 @@ int RunAasim(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sim::KeepFreedHostMemory();  // frame-sized buffers reused, not re-faulted (sim/host_memory.h)
   cli::OutputDir::RemoveTemporariesOnSignals();
   return CheckStdout(RunAasim(argc, argv));
 }

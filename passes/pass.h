@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <glm/vec4.hpp>
 
 #include "passes/settings.h"
@@ -86,13 +87,13 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture);
 template <glm::length_t N>
 PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& texture,
                   std::vector<std::string> channels) {
-  PassLayer layer{std::move(name), std::move(channels), texture.Width(), texture.Height(), {}};
+  // A glm vector array is its channels interleaved (glm::value_ptr's contract): one copy, with no
+  // zero-fill of the layer before it.
+  static_assert(sizeof(glm::vec<N, float>) == N * sizeof(float));
   const std::span<const glm::vec<N, float>> texels = texture.Texels();
-  layer.values.resize(texels.size() * N);
-  for (std::size_t i = 0; i < texels.size(); ++i) {
-    for (glm::length_t c = 0; c < N; ++c) layer.values[i * N + static_cast<std::size_t>(c)] = texels[i][c];
-  }
-  return layer;
+  const float* const first = glm::value_ptr(texels.front());
+  return {std::move(name), std::move(channels), texture.Width(), texture.Height(),
+          std::vector<float>(first, first + texels.size() * N)};
 }
 
 // The frame's colour as passes with an 8-bit colour target read it: stored into an RGBA8 sRGB

@@ -116,20 +116,27 @@ WorkSetShape WorkSet::Shape(Strategy strategy) const {
 }
 
 WorkSetShape ShapeOf(std::span<const std::uint8_t> marked, int width, int height) {
-  const auto count = [&](int side) {
-    const int columns = (width + side - 1) / side, rows = (height + side - 1) / side;
-    std::vector<std::uint8_t> touched(static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows), 0);
-    std::uint64_t pixels = 0;
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) {
-        if (!marked[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]) continue;
-        ++pixels;
-        touched[static_cast<std::size_t>(y / side) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(x / side)] = 1;
-      }
+  // One pass over the pixels marks the quads and tiles they touch (unsigned divisions by the
+  // constant sides: shifts).
+  constexpr std::size_t kQuad = 2, kTile = kWorkSetTileSide;
+  const auto w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
+  const std::size_t quadColumns = (w + kQuad - 1) / kQuad, tileColumns = (w + kTile - 1) / kTile;
+  std::vector<std::uint8_t> quads(quadColumns * ((h + kQuad - 1) / kQuad), 0);
+  std::vector<std::uint8_t> tiles(tileColumns * ((h + kTile - 1) / kTile), 0);
+  std::uint64_t pixels = 0;
+  for (std::size_t y = 0; y < h; ++y) {
+    const std::uint8_t* row = marked.data() + y * w;
+    for (std::size_t x = 0; x < w; ++x) {
+      if (row[x] == 0) continue;
+      ++pixels;
+      quads[y / kQuad * quadColumns + x / kQuad] = 1;
+      tiles[y / kTile * tileColumns + x / kTile] = 1;
     }
-    return std::pair{pixels, static_cast<std::uint64_t>(std::count(touched.begin(), touched.end(), 1))};
+  }
+  const auto touched = [](const std::vector<std::uint8_t>& cells) {
+    return static_cast<std::uint64_t>(std::count(cells.begin(), cells.end(), 1));
   };
-  return {.pixels = count(1).first, .quads = count(2).second, .tiles = count(kWorkSetTileSide).second};
+  return {.pixels = pixels, .quads = touched(quads), .tiles = touched(tiles)};
 }
 
 void WorkSet::WriteQueueArguments(sim::Machine& machine) {

@@ -19,6 +19,9 @@
 #if defined(__SSE__) || defined(__x86_64__)
 #include <xmmintrin.h>
 #endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -63,7 +66,7 @@ bool ViewCompatible(Format resource, Format view);
 // the float32 product 255 x rounded to nearest, ties to even. Measured against Mesa 22.3.6
 // llvmpipe render-target stores of every (k + 0.5) / 255 (docs/smaa.md "Against the reference"):
 // floor(255 x + 0.5) in exact arithmetic differs on 127 of those 255 ties.
-inline std::uint8_t FloatToUnorm8(float value) {
+[[gnu::always_inline]] inline std::uint8_t FloatToUnorm8(float value) {
   // Adding and removing 2^23 rounds a float in [0, 2^23) to an integer in the current rounding
   // mode (to nearest, ties to even): std::nearbyint's result without its library call, which
   // every 8-bit store and sRGB read would otherwise pay (SimFormats tests it against nearbyint).
@@ -76,7 +79,25 @@ inline std::uint8_t FloatToUnorm8(float value) {
 }
 // D3D11 §3.2.3.5 (the code over 2^8 - 1) as llvmpipe computes it: k times float32(1 / 255),
 // which differs from the correctly rounded k / 255 by one ulp on 126 codes (measured as above).
-inline float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) * (1.0f / 255.0f); }
+[[gnu::always_inline]] inline float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) * (1.0f / 255.0f); }
+// FloatToUnorm8 on the N channels of a texel at once (the lanes past N are 0): the same clamp,
+// product and rounding (cvtps2dq rounds in the current mode, as the bias does; maxps returns its
+// second operand, 0, for a NaN). Every 8-bit fetch converts up to 16 channels.
+template <glm::length_t N>
+[[gnu::always_inline]] inline glm::ivec4 Unorm8Codes(const glm::vec<N, float>& value) {
+#if defined(__SSE2__)
+  alignas(16) float channels[4] = {};
+  for (glm::length_t c = 0; c < N; ++c) channels[c] = value[c];
+  const __m128 clamped = _mm_min_ps(_mm_max_ps(_mm_load_ps(channels), _mm_setzero_ps()), _mm_set1_ps(1.0f));
+  alignas(16) std::int32_t codes[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm_cvtps_epi32(_mm_mul_ps(clamped, _mm_set1_ps(255.0f))));
+  return {codes[0], codes[1], codes[2], codes[3]};
+#else
+  glm::ivec4 codes(0);
+  for (glm::length_t c = 0; c < N; ++c) codes[c] = FloatToUnorm8(value[c]);
+  return codes;
+#endif
+}
 namespace detail {
 // The sRGB conversion tables, built once (formats.cpp) from the double-precision curve. Inline
 // accessors: every sRGB fetch decodes up to 16 channels and every colour store encodes 3, so
@@ -93,7 +114,7 @@ struct SrgbTables {
   std::vector<std::uint8_t> buckets;
 };
 SrgbTables BuildSrgbTables();
-inline const SrgbTables& Srgb() {
+[[gnu::always_inline]] inline const SrgbTables& Srgb() {
   static const SrgbTables tables = BuildSrgbTables();
   return tables;
 }
@@ -101,13 +122,14 @@ inline const SrgbTables& Srgb() {
 
 // D3D11 §3.2.3.8, exact: the encoded value the double-precision curve gives, found in a table of
 // the 255 decision thresholds (the curve evaluated per store would dominate a full-screen pass).
-inline std::uint8_t FloatToSrgb8(float linear) {
+// EncodeSrgb8 takes the tables from its caller, so the three channels of a texel fetch them once.
+[[gnu::always_inline]] inline std::uint8_t EncodeSrgb8(const detail::SrgbTables& tables, float linear) {
   if (!(linear > 0.0f)) return 0;  // NaN, zero and negatives
   if (linear >= 1.0f) return 255;
-  const detail::SrgbTables& tables = detail::Srgb();
   const int code = tables.buckets[std::bit_cast<std::uint32_t>(linear) >> detail::kSrgbBucketShift];
   return static_cast<std::uint8_t>(code + (linear >= tables.thresholds[static_cast<std::size_t>(code)] ? 1 : 0));
 }
+[[gnu::always_inline]] inline std::uint8_t FloatToSrgb8(float linear) { return EncodeSrgb8(detail::Srgb(), linear); }
 // The same conversion evaluating the curve in double, the definition the table is built from.
 std::uint8_t FloatToSrgb8ByCurve(float linear);
 inline float Srgb8ToFloat(std::uint8_t code) { return detail::Srgb().decode[code]; }
@@ -179,10 +201,19 @@ template <FormattableTexel T>
   if constexpr (FloatTexel<T>) {
     if constexpr (kTexelComponents<T> == 4) {
       if (format == Format::RGBA8Srgb) {  // every colour store of a pass: unrolled
-        value[0] = Unorm8ToFloat(FloatToSrgb8(value[0]));
-        value[1] = Unorm8ToFloat(FloatToSrgb8(value[1]));
-        value[2] = Unorm8ToFloat(FloatToSrgb8(value[2]));
+        const detail::SrgbTables& tables = detail::Srgb();
+        value[0] = Unorm8ToFloat(EncodeSrgb8(tables, value[0]));
+        value[1] = Unorm8ToFloat(EncodeSrgb8(tables, value[1]));
+        value[2] = Unorm8ToFloat(EncodeSrgb8(tables, value[2]));
         value[3] = Unorm8ToFloat(FloatToUnorm8(value[3]));
+        return value;
+      }
+    }
+    if constexpr (kTexelComponents<T> > 1) {
+      constexpr bool kRgba = kTexelComponents<T> == 4, kRg = kTexelComponents<T> == 2;
+      if ((kRgba && format == Format::RGBA8Unorm) || (kRg && format == Format::RG8Unorm)) {  // SMAA's edges, weights
+        const glm::ivec4 codes = Unorm8Codes(value);
+        for (glm::length_t c = 0; c < T::length(); ++c) value[c] = Unorm8ToFloat(static_cast<std::uint8_t>(codes[c]));
         return value;
       }
     }
@@ -200,9 +231,10 @@ template <FormattableTexel T>
     // sRGB bilinear fetch comes through here.
     const float* const decode = detail::Srgb().decode.data();
     if constexpr (kTexelComponents<T> >= 3) {
-      stored[0] = decode[FloatToUnorm8(stored[0])];
-      stored[1] = decode[FloatToUnorm8(stored[1])];
-      stored[2] = decode[FloatToUnorm8(stored[2])];
+      const glm::ivec4 codes = Unorm8Codes(stored);
+      stored[0] = decode[codes[0]];
+      stored[1] = decode[codes[1]];
+      stored[2] = decode[codes[2]];
     } else {
       for (int c = 0; c < kTexelComponents<T>; ++c) {
         TexelComponent(stored, c) = decode[FloatToUnorm8(TexelComponent(stored, c))];

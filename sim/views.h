@@ -147,14 +147,10 @@ class TextureView {
     const int xa = Address(x0, Width(), mode), ya = Address(y0, Height(), mode);
     // At a texel centre the lerps return the first texel exactly when every texel is finite, as
     // 8-bit texels always are; the footprint is still fetched.
-    if (f.x == 0.0f && f.y == 0.0f && format_ && IsEightBitPerChannel(*format_)) {
-      TouchTexel(x1, ya);
-      TouchTexel(xa, y1);
-      TouchTexel(x1, y1);
-      return Read(xa, ya);
-    }
-    const T top = Read(xa, ya) * (1.0f - f.x) + Read(x1, ya) * f.x;
-    const T bottom = Read(xa, y1) * (1.0f - f.x) + Read(x1, y1) * f.x;
+    TouchFootprint(xa, x1, ya, y1);
+    if (f.x == 0.0f && f.y == 0.0f && format_ && IsEightBitPerChannel(*format_)) return Decoded(xa, ya);
+    const T top = Decoded(xa, ya) * (1.0f - f.x) + Decoded(x1, ya) * f.x;
+    const T bottom = Decoded(xa, y1) * (1.0f - f.x) + Decoded(x1, y1) * f.x;
     return top * (1.0f - f.y) + bottom * f.y;
   }
   // The four texels of the bilinear footprint, one channel (0..3 = R..A; channels the format
@@ -194,52 +190,72 @@ class TextureView {
     const int x0 = cx.texel + offset.x, y0 = cy.texel + offset.y;
     const int xa = Address(x0, Width(), mode), x1 = Address(x0 + 1, Width(), mode);
     const int ya = Address(y0, Height(), mode), y1 = Address(y0 + 1, Height(), mode);
+    TouchFootprint(xa, x1, ya, y1);
     // At a texel centre both weights are 0 and every lerp returns its first code: the stored
     // texel (8-bit texels are kept as code / 255). The footprint is still fetched and counted.
-    if (cx.weight == 0 && cy.weight == 0) {
-      TouchTexel(x1, ya);
-      TouchTexel(xa, y1);
-      TouchTexel(x1, y1);
-      return Texel(xa, ya);
-    }
-    const T t00 = Texel(xa, ya), t10 = Texel(x1, ya), t01 = Texel(xa, y1), t11 = Texel(x1, y1);
+    if (cx.weight == 0 && cy.weight == 0) return Stored(xa, ya);
+    const glm::ivec4 c00 = Codes(Stored(xa, ya)), c10 = Codes(Stored(x1, ya));
+    const glm::ivec4 c01 = Codes(Stored(xa, y1)), c11 = Codes(Stored(x1, y1));
     T result{};
     for (int c = 0; c < kTexelComponents<T>; ++c) {
-      const auto code = [c](const T& texel) { return static_cast<int>(FloatToUnorm8(TexelComponent(texel, c))); };
-      const int top = LerpUnorm8(cx.weight, code(t00), code(t10));
-      const int bottom = LerpUnorm8(cx.weight, code(t01), code(t11));
+      const int top = LerpUnorm8(cx.weight, c00[c], c10[c]);
+      const int bottom = LerpUnorm8(cx.weight, c01[c], c11[c]);
       TexelComponent(result, c) = Unorm8ToFloat(static_cast<std::uint8_t>(LerpUnorm8(cy.weight, top, bottom)));
     }
     return result;
   }
-  // One fetch instruction reading `texels` texels (the footprint; touched lines come from Texel).
+  // The 8-bit codes of a texel of a UNORM8 format (kept as code / 255).
+  [[gnu::always_inline]] static glm::ivec4 Codes(const T& texel) {
+    if constexpr (kTexelComponents<T> == 1) {
+      return glm::ivec4(FloatToUnorm8(texel), 0, 0, 0);
+    } else {
+      return Unorm8Codes(texel);
+    }
+  }
+  // One fetch instruction reading `texels` texels (the footprint; its lines are marked by Touch*).
   void CountFetch(const LaneBase& lane, int texels) const {
     ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     ++traffic.fetches;
     traffic.bytesRead += static_cast<std::uint64_t>(texels) * static_cast<std::uint64_t>(texture_->TexelBytes());
   }
-  // The stored texel; out of range, zero in every channel (D3D). Always inlined: a bilinear
-  // sample makes four of these, and the call cost more than the fetch.
-  [[gnu::always_inline]] T Texel(int x, int y) const {
+  // The stored texel; out of range, zero in every channel (D3D). The caller marks its line.
+  // Always inlined, as everything a fetch calls per texel: the call cost more than the load.
+  [[gnu::always_inline]] T Stored(int x, int y) const {
     if (!texture_->Contains(x, y)) return T{};
-    const std::size_t index = texture_->Index(x, y);
-    const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
-    texture_->TouchRead(index * bytes, bytes);
-    return texture_->Texels()[index];
+    return texture_->Texels()[texture_->Index(x, y)];
   }
-  // A texel of the footprint the filter fetches but whose value it does not need: its line is
-  // marked as Texel would, without the host load.
   [[gnu::always_inline]] void TouchTexel(int x, int y) const {
     if (!texture_->Contains(x, y)) return;
     const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
     texture_->TouchRead(texture_->Index(x, y) * bytes, bytes);
   }
-  // The texel as a shader reads it through this view.
-  [[gnu::always_inline]] T Read(int x, int y) const {
-    if constexpr (FormattableTexel<T>) {
-      if (format_ == Format::RGBA8Srgb) return Decode(Format::RGBA8Srgb, Texel(x, y));
+  // Columns x0 and x1 (equal, neighbours or wrapped) of row y: the lines their texels lie on, one
+  // range when they are neighbours in memory.
+  [[gnu::always_inline]] void TouchRow(int x0, int x1, int y) const {
+    if (x1 == x0 + 1 && x0 >= 0 && x1 < texture_->Width() && y >= 0 && y < texture_->Height()) {
+      const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
+      texture_->TouchRead(texture_->Index(x0, y) * bytes, 2 * bytes);
+      return;
     }
-    return Texel(x, y);
+    TouchTexel(x0, y);
+    if (x1 != x0) TouchTexel(x1, y);
+  }
+  // A bilinear footprint's lines: the same as touching its four texels one by one.
+  [[gnu::always_inline]] void TouchFootprint(int x0, int x1, int y0, int y1) const {
+    TouchRow(x0, x1, y0);
+    if (y1 != y0) TouchRow(x0, x1, y1);
+  }
+  // The texel as a shader reads it through this view, its line marked.
+  [[gnu::always_inline]] T Read(int x, int y) const {
+    TouchTexel(x, y);
+    return Decoded(x, y);
+  }
+  // The same without marking the line.
+  [[gnu::always_inline]] T Decoded(int x, int y) const {
+    if constexpr (FormattableTexel<T>) {
+      if (format_ == Format::RGBA8Srgb) return Decode(Format::RGBA8Srgb, Stored(x, y));
+    }
+    return Stored(x, y);
   }
 
   const Texture2D<T>* texture_;
@@ -267,7 +283,7 @@ class RwTextureView {
     return read_.Load(lane, x, y, offset);
   }
   // Quantised through the view format as the hardware's conversion does (sim/formats.h).
-  void Store(const LaneBase& lane, int x, int y, const T& value) const {
+  [[gnu::always_inline]] void Store(const LaneBase& lane, int x, int y, const T& value) const {
     if (lane.helper) return;
     ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     if (!texture_->Contains(x, y)) {

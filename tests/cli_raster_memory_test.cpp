@@ -17,18 +17,7 @@
 
 #include "cli/raster_options.h"
 #include "cli_test_util.h"
-
-// GCC announces a sanitizer with __SANITIZE_*__; clang 14 answers __has_feature instead.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define AASIM_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-#define AASIM_TEST_SANITIZED 1
-#endif
-#endif
-#ifndef AASIM_TEST_SANITIZED
-#define AASIM_TEST_SANITIZED 0
-#endif
+#include "sanitized.h"
 
 namespace {
 
