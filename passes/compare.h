@@ -23,7 +23,8 @@ ImageDifference BitwiseDifference(const sim::Texture2D<T>& a, const sim::Texture
   ImageDifference difference;
   for (int y = 0; y < a.Height(); ++y) {
     for (int x = 0; x < a.Width(); ++x) {
-      if (std::memcmp(&a.At(x, y), &b.At(x, y), sizeof(T)) == 0) continue;
+      const T left = a.Get(x, y), right = b.Get(x, y);
+      if (std::memcmp(&left, &right, sizeof(T)) == 0) continue;
       if (difference.pixels++ == 0) {
         difference.x = x;
         difference.y = y;

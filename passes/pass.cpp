@@ -38,38 +38,57 @@ FrameInputs FrameInputsOf(const sim::FramePipeline& frame) {
 }
 
 PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture) {
+  if (texture.KeepsCodes()) {
+    return CodesLayer(std::move(name), {"Y"}, texture.Width(), texture.Height(), texture.Codes(), 1, 1);
+  }
   const std::span<const float> texels = texture.Texels();
   return {std::move(name), {"Y"}, texture.Width(), texture.Height(), {texels.begin(), texels.end()}};
 }
 
+PassLayer CodesLayer(std::string name, std::vector<std::string> channels, int width, int height,
+                     std::span<const std::uint8_t> codes, int codeChannels, int components) {
+  const auto stride = static_cast<std::size_t>(codeChannels), n = static_cast<std::size_t>(components);
+  const std::size_t texels = codes.size() / stride;
+  PassLayer layer{std::move(name), std::move(channels), width, height, std::vector<float>(texels * n)};
+  for (std::size_t i = 0; i < texels; ++i) {
+    for (std::size_t c = 0; c < n; ++c) {
+      layer.values[i * n + c] = c < stride ? sim::Unorm8ToFloat(codes[i * stride + c]) : (c == 3 ? 1.0f : 0.0f);
+    }
+  }
+  return layer;
+}
+
 namespace {
 // Per-texel host conversions of a whole frame, by rows on the worker threads (independent
-// texels: the result does not depend on the thread count).
+// texels: the result does not depend on the thread count). convert(texel index) does one.
 template <typename Convert>
-void ConvertTexels(std::span<const glm::vec4> in, std::span<glm::vec4> out, int width, Convert convert) {
+void ByRows(int width, int height, Convert convert) {
   const auto row = static_cast<std::size_t>(width);
-  sim::ParallelFor(in.size() / row, [&](std::size_t y) {
-    for (std::size_t i = y * row; i < (y + 1) * row; ++i) out[i] = convert(in[i]);
+  sim::ParallelFor(static_cast<std::size_t>(height), [&](std::size_t y) {
+    for (std::size_t i = y * row; i < (y + 1) * row; ++i) convert(i);
   });
 }
 }  // namespace
 
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear) {
   sim::Texture2D<glm::vec4> target(std::move(name), linear.Width(), linear.Height(), sim::Format::RGBA8Srgb);
-  ConvertTexels(linear.Texels(), target.Texels(), linear.Width(),
-                [](const glm::vec4& texel) { return sim::Quantize(sim::Format::RGBA8Srgb, texel); });
+  StoreSrgb8(linear, target);
   return target;
 }
 
 void StoreSrgb8(const sim::Texture2D<glm::vec4>& linear, sim::Texture2D<glm::vec4>& target) {
-  ConvertTexels(linear.Texels(), target.Texels(), linear.Width(),
-                [](const glm::vec4& texel) { return sim::Quantize(sim::Format::RGBA8Srgb, texel); });
+  const std::span<const glm::vec4> in = linear.Texels();
+  std::uint8_t* const codes = target.Codes().data();
+  ByRows(linear.Width(), linear.Height(),
+         [&](std::size_t i) { sim::EncodeCodes(sim::Format::RGBA8Srgb, in[i], codes + 4 * i, 4); });
 }
 
 sim::Texture2D<glm::vec4> DecodedSrgb8(std::string name, const sim::Texture2D<glm::vec4>& target) {
   sim::Texture2D<glm::vec4> linear(std::move(name), target.Width(), target.Height(), 4);
-  ConvertTexels(target.Texels(), linear.Texels(), target.Width(),
-                [](const glm::vec4& texel) { return sim::Decode(sim::Format::RGBA8Srgb, texel); });
+  const std::uint8_t* const codes = target.Codes().data();
+  const std::span<glm::vec4> out = linear.Texels();
+  ByRows(target.Width(), target.Height(),
+         [&](std::size_t i) { out[i] = sim::DecodeCodes<glm::vec4>(codes + 4 * i, 4, true); });
   return linear;
 }
 

@@ -82,11 +82,18 @@ struct PassLayer {
 
 // A one-channel layer ("Y") holding the texture's values.
 PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture);
-// A layer of a vector texture, one named channel per component (an 8-bit texture's texels read
-// as k / 255, as its UNORM view does).
+// A layer of `components` channels from an 8-bit texture's codes, read as k / 255 as its UNORM
+// view does (channels past the format's 0, alpha 1).
+PassLayer CodesLayer(std::string name, std::vector<std::string> channels, int width, int height,
+                     std::span<const std::uint8_t> codes, int codeChannels, int components);
+// A layer of a vector texture, one named channel per component.
 template <glm::length_t N>
 PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& texture,
                   std::vector<std::string> channels) {
+  if (texture.KeepsCodes()) {
+    return CodesLayer(std::move(name), std::move(channels), texture.Width(), texture.Height(), texture.Codes(),
+                      texture.CodeChannels(), N);
+  }
   // A glm vector array is its channels interleaved (glm::value_ptr's contract): one copy, with no
   // zero-fill of the layer before it.
   static_assert(sizeof(glm::vec<N, float>) == N * sizeof(float));

@@ -244,6 +244,54 @@ template <FormattableTexel T>
   return stored;
 }
 
+// ---- 8-bit texels kept as codes (sim/resources.h Texture2D) ----
+// A texture of an 8-bit format keeps `channels` bytes per texel (its format's channels; views of
+// the typeless family, RGBA8 UNORM and sRGB, have the same count). EncodeCodes writes what a
+// store of `value` through a view of `view` format leaves, DecodeCodes returns what a load reads:
+// code / 255 through a UNORM view, the sRGB curve for RGB through an sRGB view (alpha linear);
+// channels past the format's read 0, and 1 for alpha (D3D11.3 spec §19.1.3.3). These are
+// Quantize and Decode with the texel's codes kept instead of its floats: the same values.
+template <FloatTexel T>
+[[gnu::always_inline]] inline void EncodeCodes(Format view, const T& value, std::uint8_t* codes, int channels) {
+  if constexpr (kTexelComponents<T> >= 3) {
+    if (view == Format::RGBA8Srgb) {
+      const detail::SrgbTables& tables = detail::Srgb();
+      codes[0] = EncodeSrgb8(tables, value[0]);
+      codes[1] = EncodeSrgb8(tables, value[1]);
+      codes[2] = EncodeSrgb8(tables, value[2]);
+      codes[3] = FloatToUnorm8(value[3]);
+      return;
+    }
+  }
+  if constexpr (kTexelComponents<T> == 1) {
+    codes[0] = FloatToUnorm8(value);
+  } else {
+    const glm::ivec4 unorm = Unorm8Codes(value);
+    for (int c = 0; c < channels; ++c) codes[c] = static_cast<std::uint8_t>(unorm[c]);
+  }
+}
+template <FloatTexel T>
+[[gnu::always_inline]] inline T DecodeCodes(const std::uint8_t* codes, int channels, bool srgb) {
+  if constexpr (kTexelComponents<T> == 1) {
+    return Unorm8ToFloat(codes[0]);
+  } else {
+    T texel(0.0f);
+    if constexpr (kTexelComponents<T> == 4) texel[3] = 1.0f;
+    if constexpr (kTexelComponents<T> == 4) {
+      if (srgb) {  // only RGBA8 is sRGB
+        const float* const decode = detail::Srgb().decode.data();
+        texel[0] = decode[codes[0]];
+        texel[1] = decode[codes[1]];
+        texel[2] = decode[codes[2]];
+        texel[3] = Unorm8ToFloat(codes[3]);
+        return texel;
+      }
+    }
+    for (int c = 0; c < channels; ++c) texel[c] = Unorm8ToFloat(codes[c]);
+    return texel;
+  }
+}
+
 // ---- Fixed-point bilinear filtering of 8-bit UNORM texels ----
 // As llvmpipe's AoS sampler (lp_bld_sample_aos.c lp_build_sample_image_linear): the normalised
 // coordinate times 256 * size, rounded to nearest (even) as one float32 product

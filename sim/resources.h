@@ -5,7 +5,9 @@
 // reported both as lane requests and as distinct lines (sim/counters.h ResourceTraffic).
 // Host access (At, Fill) is not counted: only views (sim/views.h) count.
 
+#include <array>
 #include <atomic>
+#include <cstring>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "raster/limits.h"
+#include "sim/check.h"
 #include "sim/formats.h"
 #include "sim/wave.h"
 
@@ -65,21 +68,21 @@ class Resource {
 
 // Row-major texels. Without a Format the host keeps T unchanged and texelBytes is only the
 // modelled size (e.g. 4 for RGBA8 even though the host keeps float RGBA). With a Format
-// (sim/formats.h) the size comes from it and every texel is kept as its views read it: stores
-// through views, Fill and the fill value are quantised; At() is the raw host value.
+// (sim/formats.h) the size comes from it and stores through views, Set, Fill and the fill value
+// are quantised. A texture of an 8-bit format (R8, RG8, RGBA8 UNORM or sRGB) keeps its codes, one
+// byte per channel of the format, as the hardware does: Codes(), Get and Set; every other texture
+// keeps T: Texels(), At (the raw host value) and Get/Set.
 template <typename T>
 class Texture2D : public Resource {
  public:
   Texture2D(std::string name, int width, int height, int texelBytes = sizeof(T), T fill = T{})
-      : Resource(CheckedName(std::move(name), width, height, texelBytes),
-                 static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
-                     static_cast<std::size_t>(texelBytes)),
-        width_(width), height_(height), texelBytes_(texelBytes),
-        texels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill) {}
+      : Texture2D(std::move(name), width, height, texelBytes, std::nullopt) {
+    texels_.assign(TexelCount(), fill);
+  }
   Texture2D(std::string name, int width, int height, Format format, T fill = T{})
     requires FormattableTexel<T>
-      : Texture2D(CheckedFormat(std::move(name), format), width, height, BytesPerTexel(format)) {
-    format_ = format;
+      : Texture2D(CheckedFormat(std::move(name), format), width, height, BytesPerTexel(format), format) {
+    if (codeChannels_ == 0) texels_.resize(TexelCount());
     Fill(fill);
   }
 
@@ -91,13 +94,78 @@ class Texture2D : public Resource {
   std::size_t Index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   }
-  T& At(int x, int y) { return texels_[Index(x, y)]; }
-  const T& At(int x, int y) const { return texels_[Index(x, y)]; }
-  std::span<T> Texels() { return texels_; }
-  std::span<const T> Texels() const { return texels_; }
-  void Fill(const T& value) { std::fill(texels_.begin(), texels_.end(), Kept(value)); }
+
+  // Bytes per texel of an 8-bit texture's codes (its format's channels), 0 for a texture that
+  // keeps T.
+  int CodeChannels() const { return codeChannels_; }
+  bool KeepsCodes() const { return codeChannels_ != 0; }
+  std::span<std::uint8_t> Codes() {
+    AASIM_CHECK(KeepsCodes());
+    return codes_;
+  }
+  std::span<const std::uint8_t> Codes() const {
+    AASIM_CHECK(KeepsCodes());
+    return codes_;
+  }
+  // Texture that keeps T only.
+  T& At(int x, int y) {
+    AASIM_CHECK(!KeepsCodes());
+    return texels_[Index(x, y)];
+  }
+  const T& At(int x, int y) const {
+    AASIM_CHECK(!KeepsCodes());
+    return texels_[Index(x, y)];
+  }
+  std::span<T> Texels() {
+    AASIM_CHECK(!KeepsCodes());
+    return texels_;
+  }
+  std::span<const T> Texels() const {
+    AASIM_CHECK(!KeepsCodes());
+    return texels_;
+  }
+  // Any texture: what At holds, or an 8-bit texture's codes as its UNORM view reads them
+  // (code / 255, the format's missing channels 0 and alpha 1), and a quantised host store.
+  T Get(int x, int y) const {
+    if constexpr (FloatTexel<T>) {
+      if (KeepsCodes()) return DecodeCodes<T>(codes_.data() + Index(x, y) * CodeStride(), codeChannels_, false);
+    }
+    return texels_[Index(x, y)];
+  }
+  void Set(int x, int y, const T& value) {
+    if constexpr (FloatTexel<T>) {
+      if (KeepsCodes()) {
+        EncodeCodes(*format_, value, codes_.data() + Index(x, y) * CodeStride(), codeChannels_);
+        return;
+      }
+    }
+    texels_[Index(x, y)] = Kept(value);
+  }
+  void Fill(const T& value) {
+    if constexpr (FloatTexel<T>) {
+      if (KeepsCodes()) {
+        std::array<std::uint8_t, 4> texel{};
+        EncodeCodes(*format_, value, texel.data(), codeChannels_);
+        const std::size_t stride = CodeStride();
+        for (std::size_t at = 0; at < codes_.size(); at += stride) std::memcpy(codes_.data() + at, texel.data(), stride);
+        return;
+      }
+    }
+    std::fill(texels_.begin(), texels_.end(), Kept(value));
+  }
 
  private:
+  Texture2D(std::string name, int width, int height, int texelBytes, std::optional<Format> format)
+      : Resource(CheckedName(std::move(name), width, height, texelBytes),
+                 static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(texelBytes)),
+        width_(width), height_(height), texelBytes_(texelBytes), format_(format) {
+    if constexpr (FloatTexel<T>) {
+      if (format && IsEightBitPerChannel(*format)) {
+        codeChannels_ = Channels(*format);
+        codes_.resize(TexelCount() * CodeStride());
+      }
+    }
+  }
   static std::string CheckedName(std::string name, int width, int height, int texelBytes) {
     if (width < 1 || height < 1 || width > raster::kMaxDimension || height > raster::kMaxDimension) {
       throw std::invalid_argument("texture '" + name + "': size " + std::to_string(width) + "x" +
@@ -116,6 +184,8 @@ class Texture2D : public Resource {
     }
     return name;
   }
+  std::size_t TexelCount() const { return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_); }
+  std::size_t CodeStride() const { return static_cast<std::size_t>(codeChannels_); }
   T Kept(const T& value) const {
     if constexpr (FormattableTexel<T>) {
       if (format_) return Quantize(*format_, value);
@@ -125,7 +195,9 @@ class Texture2D : public Resource {
 
   int width_, height_, texelBytes_;
   std::optional<Format> format_;
+  int codeChannels_ = 0;
   std::vector<T> texels_;
+  std::vector<std::uint8_t> codes_;
 };
 
 template <typename T>

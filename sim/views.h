@@ -8,6 +8,7 @@
 // Views are created by sim::Dispatch, which records the binding they count into.
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -87,13 +88,18 @@ namespace detail {
 // (sim/formats.h); everything else filters in float. Textures have no mips, so every sample
 // reads level 0: HLSL's SampleLevel(s, uv, 0) and Sample(s, uv) are both SamplePoint or
 // SampleBilinear here. Offsets are whole texels added to the texel index before addressing.
+//
+// A view keeps what every fetch needs (the texture's size, where its host texels or 8-bit codes
+// are, how this view decodes them) so a fetch does no more than count, mark its lines and read.
 template <typename T>
 class TextureView {
  public:
   using Gathered = glm::vec<4, TexelScalar<T>>;
 
   TextureView(const Texture2D<T>& texture, ViewBinding binding)
-      : texture_(&texture), binding_(std::move(binding)), format_(texture.TexelFormat()) {}
+      : texture_(&texture), binding_(std::move(binding)), format_(texture.TexelFormat()) {
+    Cache();
+  }
 
   // The same binding (same traffic counters, same bytes) read through another format: SMAA
   // reads one RGBA8 colour texture through a UNORM view and through an sRGB view (aa-facts §1.9).
@@ -106,30 +112,38 @@ class TextureView {
     }
     TextureView view = *this;
     view.format_ = format;
+    view.Cache();
     return view;
   }
   std::optional<Format> ViewFormat() const { return format_; }
-  int Width() const { return texture_->Width(); }
-  int Height() const { return texture_->Height(); }
+  int Width() const { return width_; }
+  int Height() const { return height_; }
 
-  T Load(const LaneBase& lane, int x, int y, glm::ivec2 offset = {0, 0}) const {
+  [[gnu::always_inline]] T Load(const LaneBase& lane, int x, int y, glm::ivec2 offset = {0, 0}) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 1);
-    return Read(x + offset.x, y + offset.y);
+    x += offset.x;
+    y += offset.y;
+    if (!Contains(x, y)) return T{};  // D3D: out-of-range loads read zero
+    const std::size_t index = Index(x, y);
+    TouchTexel(index);
+    return Decoded(index);
   }
   // uv in [0, 1] spans the texture; outside it the address mode applies.
   T SamplePoint(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
                 glm::ivec2 offset = {0, 0}) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 1);
-    const glm::vec2 texel = uv * glm::vec2(Width(), Height());
-    return Read(Address(static_cast<int>(std::floor(texel.x)) + offset.x, Width(), mode),
-                Address(static_cast<int>(std::floor(texel.y)) + offset.y, Height(), mode));
+    const glm::vec2 texel = uv * glm::vec2(width_, height_);
+    const std::size_t index = Index(Address(static_cast<int>(std::floor(texel.x)) + offset.x, width_, mode),
+                                    Address(static_cast<int>(std::floor(texel.y)) + offset.y, height_, mode));
+    TouchTexel(index);
+    return Decoded(index);
   }
-  T SampleBilinear(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
-                   glm::ivec2 offset = {0, 0}) const {
+  [[gnu::always_inline]] T SampleBilinear(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
+                                          glm::ivec2 offset = {0, 0}) const {
     if constexpr (FloatTexel<T>) {
-      if (format_ && IsUnorm8(*format_)) return SampleBilinearUnorm8(lane, uv, mode, offset);
+      if (filterUnorm8_) return SampleBilinearUnorm8(lane, uv, mode, offset);
     }
     return SampleBilinearFloat(lane, uv, mode, offset);
   }
@@ -139,18 +153,18 @@ class TextureView {
                         glm::ivec2 offset = {0, 0}) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 4);
-    const glm::vec2 texel = uv * glm::vec2(Width(), Height()) - 0.5f;
+    const glm::vec2 texel = uv * glm::vec2(width_, height_) - 0.5f;
     const glm::vec2 base = glm::floor(texel);
     const glm::vec2 f = texel - base;
     const int x0 = static_cast<int>(base.x) + offset.x, y0 = static_cast<int>(base.y) + offset.y;
-    const int x1 = Address(x0 + 1, Width(), mode), y1 = Address(y0 + 1, Height(), mode);
-    const int xa = Address(x0, Width(), mode), ya = Address(y0, Height(), mode);
+    const int x1 = Address(x0 + 1, width_, mode), y1 = Address(y0 + 1, height_, mode);
+    const int xa = Address(x0, width_, mode), ya = Address(y0, height_, mode);
+    TouchFootprint(xa, x1, ya, y1);
     // At a texel centre the lerps return the first texel exactly when every texel is finite, as
     // 8-bit texels always are; the footprint is still fetched.
-    TouchFootprint(xa, x1, ya, y1);
-    if (f.x == 0.0f && f.y == 0.0f && format_ && IsEightBitPerChannel(*format_)) return Decoded(xa, ya);
-    const T top = Decoded(xa, ya) * (1.0f - f.x) + Decoded(x1, ya) * f.x;
-    const T bottom = Decoded(xa, y1) * (1.0f - f.x) + Decoded(x1, y1) * f.x;
+    if (f.x == 0.0f && f.y == 0.0f && codes_ != nullptr) return Decoded(Index(xa, ya));
+    const T top = Decoded(Index(xa, ya)) * (1.0f - f.x) + Decoded(Index(x1, ya)) * f.x;
+    const T bottom = Decoded(Index(xa, y1)) * (1.0f - f.x) + Decoded(Index(x1, y1)) * f.x;
     return top * (1.0f - f.y) + bottom * f.y;
   }
   // The four texels of the bilinear footprint, one channel (0..3 = R..A; channels the format
@@ -163,13 +177,15 @@ class TextureView {
     detail::CheckTexelOffset(lane, offset);
     if (channel < 0 || channel > 3) detail::ThrowBadTexelArgument(lane, "gather channel outside 0..3");
     CountFetch(lane, 4);
-    const glm::vec2 texel = uv * glm::vec2(Width(), Height()) - 0.5f;
+    const glm::vec2 texel = uv * glm::vec2(width_, height_) - 0.5f;
     const int x0 = static_cast<int>(std::floor(texel.x)) + offset.x;
     const int y0 = static_cast<int>(std::floor(texel.y)) + offset.y;
-    const int u0 = Address(x0, Width(), mode), u1 = Address(x0 + 1, Width(), mode);
-    const int v0 = Address(y0, Height(), mode), v1 = Address(y0 + 1, Height(), mode);
+    const int u0 = Address(x0, width_, mode), u1 = Address(x0 + 1, width_, mode);
+    const int v0 = Address(y0, height_, mode), v1 = Address(y0 + 1, height_, mode);
     const auto pick = [&](int x, int y) -> TexelScalar<T> {
-      const T value = Read(x, y);
+      const std::size_t index = Index(x, y);
+      TouchTexel(index);
+      const T value = Decoded(index);
       if (channel < kTexelComponents<T>) return TexelComponent(value, channel);
       return channel == 3 ? TexelScalar<T>{1} : TexelScalar<T>{0};
     };
@@ -177,97 +193,108 @@ class TextureView {
   }
 
  private:
-  static int Address(int i, int size, AddressMode mode) {
+  template <typename>
+  friend class RwTextureView;
+
+  void Cache() {
+    width_ = texture_->Width();
+    height_ = texture_->Height();
+    texelBytes_ = static_cast<std::size_t>(texture_->TexelBytes());
+    codeChannels_ = texture_->CodeChannels();
+    codes_ = texture_->KeepsCodes() ? texture_->Codes().data() : nullptr;
+    texels_ = texture_->KeepsCodes() ? nullptr : texture_->Texels().data();
+    srgb_ = format_ == Format::RGBA8Srgb;
+    filterUnorm8_ = format_ && IsUnorm8(*format_);
+  }
+  [[gnu::always_inline]] bool Contains(int x, int y) const {
+    return static_cast<unsigned>(x) < static_cast<unsigned>(width_) &&
+           static_cast<unsigned>(y) < static_cast<unsigned>(height_);
+  }
+  [[gnu::always_inline]] std::size_t Index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  }
+  [[gnu::always_inline]] static int Address(int i, int size, AddressMode mode) {
     if (mode == AddressMode::Clamp) return std::clamp(i, 0, size - 1);
     const int r = i % size;
     return r < 0 ? r + size : r;
   }
-  // sim/formats.h ToFixedPointCoord and LerpUnorm8 on the 8-bit codes, in x then in y.
+  // sim/formats.h ToFixedPointCoord and LerpUnorm8 on the 8-bit codes, in x then in y. The
+  // texture keeps codes (a UNORM8 view is of an 8-bit texture); channels past the format's lerp
+  // their default with itself.
   T SampleBilinearUnorm8(const LaneBase& lane, glm::vec2 uv, AddressMode mode, glm::ivec2 offset) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 4);
-    const FixedPointCoord cx = ToFixedPointCoord(uv.x, Width()), cy = ToFixedPointCoord(uv.y, Height());
+    const FixedPointCoord cx = ToFixedPointCoord(uv.x, width_), cy = ToFixedPointCoord(uv.y, height_);
     const int x0 = cx.texel + offset.x, y0 = cy.texel + offset.y;
-    const int xa = Address(x0, Width(), mode), x1 = Address(x0 + 1, Width(), mode);
-    const int ya = Address(y0, Height(), mode), y1 = Address(y0 + 1, Height(), mode);
+    const int xa = Address(x0, width_, mode), x1 = Address(x0 + 1, width_, mode);
+    const int ya = Address(y0, height_, mode), y1 = Address(y0 + 1, height_, mode);
     TouchFootprint(xa, x1, ya, y1);
     // At a texel centre both weights are 0 and every lerp returns its first code: the stored
-    // texel (8-bit texels are kept as code / 255). The footprint is still fetched and counted.
-    if (cx.weight == 0 && cy.weight == 0) return Stored(xa, ya);
-    const glm::ivec4 c00 = Codes(Stored(xa, ya)), c10 = Codes(Stored(x1, ya));
-    const glm::ivec4 c01 = Codes(Stored(xa, y1)), c11 = Codes(Stored(x1, y1));
-    T result{};
-    for (int c = 0; c < kTexelComponents<T>; ++c) {
+    // texel. The footprint is still fetched and counted.
+    if (cx.weight == 0 && cy.weight == 0) return DecodeCodes<T>(CodesAt(Index(xa, ya)), codeChannels_, false);
+    const std::uint8_t *c00 = CodesAt(Index(xa, ya)), *c10 = CodesAt(Index(x1, ya));
+    const std::uint8_t *c01 = CodesAt(Index(xa, y1)), *c11 = CodesAt(Index(x1, y1));
+    T result = DecodeCodes<T>(c00, 0, false);  // the defaults of the channels past the format's
+    for (int c = 0; c < codeChannels_; ++c) {
       const int top = LerpUnorm8(cx.weight, c00[c], c10[c]);
       const int bottom = LerpUnorm8(cx.weight, c01[c], c11[c]);
       TexelComponent(result, c) = Unorm8ToFloat(static_cast<std::uint8_t>(LerpUnorm8(cy.weight, top, bottom)));
     }
     return result;
   }
-  // The 8-bit codes of a texel of a UNORM8 format (kept as code / 255).
-  [[gnu::always_inline]] static glm::ivec4 Codes(const T& texel) {
-    if constexpr (kTexelComponents<T> == 1) {
-      return glm::ivec4(FloatToUnorm8(texel), 0, 0, 0);
-    } else {
-      return Unorm8Codes(texel);
-    }
+  [[gnu::always_inline]] const std::uint8_t* CodesAt(std::size_t index) const {
+    return codes_ + index * static_cast<std::size_t>(codeChannels_);
   }
   // One fetch instruction reading `texels` texels (the footprint; its lines are marked by Touch*).
-  void CountFetch(const LaneBase& lane, int texels) const {
+  [[gnu::always_inline]] void CountFetch(const LaneBase& lane, int texels) const {
     ResourceTraffic& traffic = detail::Traffic(lane, binding_);
     ++traffic.fetches;
-    traffic.bytesRead += static_cast<std::uint64_t>(texels) * static_cast<std::uint64_t>(texture_->TexelBytes());
+    traffic.bytesRead += static_cast<std::uint64_t>(texels) * texelBytes_;
   }
-  // The stored texel; out of range, zero in every channel (D3D). The caller marks its line.
-  // Always inlined, as everything a fetch calls per texel: the call cost more than the load.
-  [[gnu::always_inline]] T Stored(int x, int y) const {
-    if (!texture_->Contains(x, y)) return T{};
-    return texture_->Texels()[texture_->Index(x, y)];
+  [[gnu::always_inline]] void TouchTexel(std::size_t index) const {
+    texture_->TouchRead(index * texelBytes_, texelBytes_);
   }
-  [[gnu::always_inline]] void TouchTexel(int x, int y) const {
-    if (!texture_->Contains(x, y)) return;
-    const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
-    texture_->TouchRead(texture_->Index(x, y) * bytes, bytes);
-  }
-  // Columns x0 and x1 (equal, neighbours or wrapped) of row y: the lines their texels lie on, one
-  // range when they are neighbours in memory.
+  // Columns x0 and x1 (equal, neighbours or wrapped) of row y, all inside the texture: the lines
+  // their texels lie on, one range when they are neighbours in memory.
   [[gnu::always_inline]] void TouchRow(int x0, int x1, int y) const {
-    if (x1 == x0 + 1 && x0 >= 0 && x1 < texture_->Width() && y >= 0 && y < texture_->Height()) {
-      const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
-      texture_->TouchRead(texture_->Index(x0, y) * bytes, 2 * bytes);
+    const std::size_t first = Index(x0, y);
+    if (x1 == x0 + 1) {
+      texture_->TouchRead(first * texelBytes_, 2 * texelBytes_);
       return;
     }
-    TouchTexel(x0, y);
-    if (x1 != x0) TouchTexel(x1, y);
+    TouchTexel(first);
+    if (x1 != x0) TouchTexel(Index(x1, y));
   }
   // A bilinear footprint's lines: the same as touching its four texels one by one.
   [[gnu::always_inline]] void TouchFootprint(int x0, int x1, int y0, int y1) const {
     TouchRow(x0, x1, y0);
     if (y1 != y0) TouchRow(x0, x1, y1);
   }
-  // The texel as a shader reads it through this view, its line marked.
-  [[gnu::always_inline]] T Read(int x, int y) const {
-    TouchTexel(x, y);
-    return Decoded(x, y);
-  }
-  // The same without marking the line.
-  [[gnu::always_inline]] T Decoded(int x, int y) const {
-    if constexpr (FormattableTexel<T>) {
-      if (format_ == Format::RGBA8Srgb) return Decode(Format::RGBA8Srgb, Stored(x, y));
+  // Texel `index` (inside the texture) as this view reads it.
+  [[gnu::always_inline]] T Decoded(std::size_t index) const {
+    if constexpr (FloatTexel<T>) {
+      if (codes_ != nullptr) return DecodeCodes<T>(CodesAt(index), codeChannels_, srgb_);
     }
-    return Stored(x, y);
+    return texels_[index];
   }
 
   const Texture2D<T>* texture_;
   ViewBinding binding_;
   std::optional<Format> format_;
+  int width_ = 0, height_ = 0;
+  std::size_t texelBytes_ = 0;
+  // Where the host keeps the texels: an 8-bit texture's codes, or T.
+  const std::uint8_t* codes_ = nullptr;
+  int codeChannels_ = 0;
+  const T* texels_ = nullptr;
+  bool srgb_ = false;          // an sRGB view: RGB codes decode through the curve
+  bool filterUnorm8_ = false;  // a UNORM8 view: bilinear in 8-bit fixed point
 };
 
 template <typename T>
 class RwTextureView {
  public:
-  RwTextureView(Texture2D<T>& texture, const ViewBinding& binding)
-      : texture_(&texture), read_(texture, binding), binding_(binding) {}
+  RwTextureView(Texture2D<T>& texture, const ViewBinding& binding) : read_(texture, binding) { Cache(); }
 
   // The same binding through another format of its typeless family (TextureView::As): an sRGB
   // view of an RGBA8 texture encodes what it stores.
@@ -277,36 +304,69 @@ class RwTextureView {
     return view;
   }
   std::optional<Format> ViewFormat() const { return read_.ViewFormat(); }
-  int Width() const { return texture_->Width(); }
-  int Height() const { return texture_->Height(); }
-  T Load(const LaneBase& lane, int x, int y, glm::ivec2 offset = {0, 0}) const {
+  int Width() const { return read_.Width(); }
+  int Height() const { return read_.Height(); }
+  [[gnu::always_inline]] T Load(const LaneBase& lane, int x, int y, glm::ivec2 offset = {0, 0}) const {
     return read_.Load(lane, x, y, offset);
   }
   // Quantised through the view format as the hardware's conversion does (sim/formats.h).
   [[gnu::always_inline]] void Store(const LaneBase& lane, int x, int y, const T& value) const {
     if (lane.helper) return;
-    ResourceTraffic& traffic = detail::Traffic(lane, binding_);
-    if (!texture_->Contains(x, y)) {
+    ResourceTraffic& traffic = detail::Traffic(lane, read_.binding_);
+    if (!read_.Contains(x, y)) {
       ++traffic.storesDroppedOob;
       return;
     }
-    const auto bytes = static_cast<std::size_t>(texture_->TexelBytes());
-    traffic.bytesWritten += bytes;
-    texture_->TouchWrite(texture_->Index(x, y) * bytes, bytes);
-    detail::StoreRelaxed(texture_->At(x, y), Kept(value));
+    const std::size_t index = read_.Index(x, y);
+    traffic.bytesWritten += read_.texelBytes_;
+    read_.texture_->TouchWrite(index * read_.texelBytes_, read_.texelBytes_);
+    if constexpr (FloatTexel<T>) {
+      if (codes_ != nullptr) {
+        std::array<std::uint8_t, 4> encoded{};
+        EncodeCodes(*read_.format_, value, encoded.data(), read_.codeChannels_);
+        StoreCodes(index, encoded);
+        return;
+      }
+    }
+    detail::StoreRelaxed(texels_[index], Kept(value));
   }
 
  private:
+  void Cache() {
+    // The view reads what it writes: the same texture, so its storage is not const here.
+    Texture2D<T>& texture = const_cast<Texture2D<T>&>(*read_.texture_);
+    codes_ = texture.KeepsCodes() ? texture.Codes().data() : nullptr;
+    texels_ = texture.KeepsCodes() ? nullptr : texture.Texels().data();
+  }
   T Kept(const T& value) const {
     if constexpr (FormattableTexel<T>) {
-      if (const std::optional<Format> format = read_.ViewFormat()) return Quantize(*format, value);
+      if (const std::optional<Format> format = read_.format_) return Quantize(*format, value);
     }
     return value;
   }
+  // A texel's codes as one relaxed atomic store (a 1, 2 or 4-byte aligned word), as StoreRelaxed.
+  [[gnu::always_inline]] void StoreCodes(std::size_t index, const std::array<std::uint8_t, 4>& encoded) const {
+    std::uint8_t* const at = codes_ + index * static_cast<std::size_t>(read_.codeChannels_);
+    switch (read_.codeChannels_) {
+      case 4: {
+        std::uint32_t word;
+        std::memcpy(&word, encoded.data(), 4);
+        std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(at)).store(word, std::memory_order_relaxed);
+        return;
+      }
+      case 2: {
+        std::uint16_t half;
+        std::memcpy(&half, encoded.data(), 2);
+        std::atomic_ref<std::uint16_t>(*reinterpret_cast<std::uint16_t*>(at)).store(half, std::memory_order_relaxed);
+        return;
+      }
+      default: std::atomic_ref<std::uint8_t>(*at).store(encoded[0], std::memory_order_relaxed);
+    }
+  }
 
-  Texture2D<T>* texture_;
   TextureView<T> read_;
-  ViewBinding binding_;
+  std::uint8_t* codes_ = nullptr;
+  T* texels_ = nullptr;
 };
 
 template <typename T>

@@ -92,7 +92,7 @@ sim::Texture2D<glm::vec2> PackVelocity(sim::Machine& machine, VelocityBuffer buf
   sim::Texture2D<glm::vec2> decoded("velocity", width, height, 2);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      const glm::vec2 codes = packed.At(x / factor, y / factor);
+      const glm::vec2 codes = packed.Get(x / factor, y / factor);
       decoded.At(x, y) = {DecodeVelocityComponent(sim::FloatToUnorm8(codes.x)),
                           DecodeVelocityComponent(sim::FloatToUnorm8(codes.y))};
     }

@@ -136,8 +136,8 @@ TEST(SmaaT2x, EachFrameRunsSmaa1xWithItsFramesSubsampleIndices) {
     for (int y = 0; y < 32; ++y) {
       for (int x = 0; x < 32; ++x) {
         for (int c = 0; c < 4; ++c) {
-          ASSERT_EQ(testing::LayerValue(layer, x, y, c), weights.At(x, y)[c]) << k << " " << x << "," << y;
-          differing += weights.At(x, y)[c] != other.At(x, y)[c];
+          ASSERT_EQ(testing::LayerValue(layer, x, y, c), weights.Get(x, y)[c]) << k << " " << x << "," << y;
+          differing += weights.Get(x, y)[c] != other.Get(x, y)[c];
         }
       }
     }
@@ -194,7 +194,7 @@ TEST(SmaaT2x, AStaticSceneConvergesToTheAverageOfTheTwoFramesSmaaOutputs) {
   const SequenceRun run = RunSequence("smaa-t2x", 4, [](int k) { return MakeFrame(32, 32, [&](int x, int y) {
     return Code(SlantedEdge(k), x, y); }, [](int, int) { return glm::vec2(0); }); }, Strategy::StencilCulled);
   const auto decoded = [](const sim::Texture2D<glm::vec4>& t, int x, int y) {
-    return sim::Decode(sim::Format::RGBA8Srgb, t.At(x, y));
+    return sim::Decode(sim::Format::RGBA8Srgb, t.Get(x, y));
   };
   int edgePixels = 0;
   for (int k = 0; k < 4; ++k) {

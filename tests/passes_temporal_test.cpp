@@ -120,7 +120,7 @@ TEST(PassesTemporal, IntegerOffsetFetchReturnsTheTexelExactly) {
   sim::Texture2D<glm::vec4> image = Image([&](int, int) { return glm::vec4(unit(rng), unit(rng), unit(rng), 1.0f); });
   sim::Texture2D<glm::vec4> srgb("history8", kW, kH, sim::Format::RGBA8Srgb);
   for (int y = 0; y < kH; ++y) {
-    for (int x = 0; x < kW; ++x) srgb.At(x, y) = sim::Quantize(sim::Format::RGBA8Srgb, image.At(x, y));
+    for (int x = 0; x < kW; ++x) srgb.Set(x, y, image.At(x, y));  // quantised through its sRGB format
   }
   for (const sim::Texture2D<glm::vec4>* texture : {&image, &srgb}) {
     OnLane(*texture, [&](const auto& view, const auto& lane) {

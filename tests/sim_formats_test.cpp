@@ -288,7 +288,7 @@ TEST(SimFormats, ViewStoresQuantiseOnlyFormattedTextures) {
     c.Store(lane, lane.threadId.x, 0, value.w);
   });
   // 0.3f * 255 rounds to the float32 tie 76.5, which goes to the even code (llvmpipe's rule).
-  EXPECT_EQ(rgba8.At(2, 0), glm::vec4(Unorm8ToFloat(76), 1.0f, 0.0f, Unorm8ToFloat(31)));
+  EXPECT_EQ(rgba8.Get(2, 0), glm::vec4(Unorm8ToFloat(76), 1.0f, 0.0f, Unorm8ToFloat(31)));
   EXPECT_EQ(half.At(2, 0), glm::vec4(HalfToFloat(FloatToHalf(0.3f)), 2.0f, -1.0f, HalfToFloat(FloatToHalf(0.123456f))));
   EXPECT_NE(half.At(2, 0).x, 0.3f);
   EXPECT_EQ(plain.At(2, 0), 0.123456f);

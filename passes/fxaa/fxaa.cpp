@@ -133,7 +133,9 @@ class FxaaPass final : public Pass {
 
   static PassLayer AlphaLayer(const sim::Texture2D<glm::vec4>& rgbl) {
     PassLayer layer{"luma", {"Y"}, rgbl.Width(), rgbl.Height(), {}};
-    for (const glm::vec4& texel : rgbl.Texels()) layer.values.push_back(texel.w);
+    const std::span<const std::uint8_t> codes = rgbl.Codes();  // RGBA8: alpha is every fourth byte
+    layer.values.reserve(codes.size() / 4);
+    for (std::size_t i = 3; i < codes.size(); i += 4) layer.values.push_back(sim::Unorm8ToFloat(codes[i]));
     return layer;
   }
 

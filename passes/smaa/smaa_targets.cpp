@@ -2,6 +2,8 @@
 
 #include "passes/smaa/smaa_targets.h"
 
+#include <algorithm>
+
 #include "passes/smaa/area_tex.h"
 #include "passes/smaa/search_tex.h"
 
@@ -10,14 +12,9 @@ namespace passes::smaa {
 LookupTables LookupTables::Make() {
   LookupTables tables{{"smaa/area-tex", kAreaTexWidth, kAreaTexHeight, sim::Format::RG8Unorm},
                       {"smaa/search-tex", kSearchTexWidth, kSearchTexHeight, sim::Format::R8Unorm}};
-  const std::span<const std::uint8_t> area = AreaTexBytes();
-  std::span<glm::vec2> areaTexels = tables.area.Texels();
-  for (std::size_t i = 0; i < areaTexels.size(); ++i) {
-    areaTexels[i] = {sim::Unorm8ToFloat(area[2 * i]), sim::Unorm8ToFloat(area[2 * i + 1])};
-  }
-  const std::span<const std::uint8_t> search = SearchTexBytes();
-  std::span<float> searchTexels = tables.search.Texels();
-  for (std::size_t i = 0; i < searchTexels.size(); ++i) searchTexels[i] = sim::Unorm8ToFloat(search[i]);
+  // The tables' bytes are the textures' codes (RG interleaved, as the published files).
+  std::ranges::copy(AreaTexBytes(), tables.area.Codes().begin());
+  std::ranges::copy(SearchTexBytes(), tables.search.Codes().begin());
   return tables;
 }
 
