@@ -51,11 +51,11 @@ std::vector<std::uint8_t> MaskImage(std::span<const float> mask) {
 LayerPng LayerPngImage(const passes::PassLayer& layer) {
   const std::size_t channels = layer.channels.size();
   LayerPng png{.channels = channels == 2 ? 3 : static_cast<int>(channels), .pixels = {}};
-  png.pixels.reserve(layer.values.size() / channels * static_cast<std::size_t>(png.channels));
-  for (std::size_t at = 0; at < layer.values.size(); at += channels) {
+  png.pixels.reserve(layer.Size() / channels * static_cast<std::size_t>(png.channels));
+  for (std::size_t at = 0; at < layer.Size(); at += channels) {
     for (int c = 0; c < png.channels; ++c) {
       png.pixels.push_back(static_cast<std::size_t>(c) < channels
-                               ? sim::FloatToUnorm8(layer.values[at + static_cast<std::size_t>(c)])
+                               ? sim::FloatToUnorm8(layer.Value(at + static_cast<std::size_t>(c)))
                                : 0);
     }
   }
@@ -71,8 +71,8 @@ void WriteLayerExr(const std::filesystem::path& path, const passes::PassLayer& l
   const std::size_t channels = layer.channels.size();
   std::vector<std::vector<float>> planes(channels);
   for (std::size_t c = 0; c < channels; ++c) {
-    planes[c].reserve(layer.values.size() / channels);
-    for (std::size_t at = c; at < layer.values.size(); at += channels) planes[c].push_back(layer.values[at]);
+    planes[c].reserve(layer.Size() / channels);
+    for (std::size_t at = c; at < layer.Size(); at += channels) planes[c].push_back(layer.Value(at));
   }
   std::vector<ExrChannel> exrChannels;
   for (std::size_t c = 0; c < channels; ++c) exrChannels.push_back({layer.channels[c], planes[c]});

@@ -14,6 +14,10 @@ add_library(aasim_opt INTERFACE)
 # contraction into fused multiply-adds, in any target, by any compiler (clang contracts by
 # default, even when it folds constants on a target without FMA instructions).
 target_compile_options(aasim_opt INTERFACE -ffp-contract=off)
+set(AASIM_MARCH "x86-64-v2" CACHE STRING "-march for every aasim target (empty: the compiler's default)")
+if(AASIM_MARCH AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
+  target_compile_options(aasim_opt INTERFACE -march=${AASIM_MARCH})
+endif()
 if(AASIM_SANITIZE)
   # -g1: line tables are all a sanitizer report's stack trace needs; full debug info only makes
   # the CI's sanitized build slower to compile and link.

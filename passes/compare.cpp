@@ -10,9 +10,22 @@ ImageDifference LayerDifference(const PassLayer& a, const PassLayer& b) {
   if (a.width != b.width || a.height != b.height || a.channels != b.channels) {
     return {.pixels = static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height)};
   }
+  // Bit for bit: two 8-bit layers by their codes, anything else by its float values.
+  const bool codes = a.codeChannels != 0 && a.codeChannels == b.codeChannels;
   const std::size_t channels = a.channels.size();
-  for (std::size_t pixel = 0; pixel * channels < a.values.size(); ++pixel) {
-    if (std::memcmp(&a.values[pixel * channels], &b.values[pixel * channels], channels * sizeof(float)) == 0) continue;
+  const auto same = [&](std::size_t pixel) {
+    if (codes) {
+      const auto stride = static_cast<std::size_t>(a.codeChannels);
+      return std::memcmp(&a.codes[pixel * stride], &b.codes[pixel * stride], stride) == 0;
+    }
+    for (std::size_t c = 0; c < channels; ++c) {
+      const float left = a.Value(pixel * channels + c), right = b.Value(pixel * channels + c);
+      if (std::memcmp(&left, &right, sizeof(float)) != 0) return false;
+    }
+    return true;
+  };
+  for (std::size_t pixel = 0; pixel * channels < a.Size(); ++pixel) {
+    if (same(pixel)) continue;
     if (difference.pixels++ == 0) {
       difference.x = static_cast<int>(pixel % static_cast<std::size_t>(a.width));
       difference.y = static_cast<int>(pixel / static_cast<std::size_t>(a.width));

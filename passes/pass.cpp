@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "sim/check.h"
 #include "sim/formats.h"
 #include "sim/parallel.h"
 
@@ -42,20 +43,21 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture) {
     return CodesLayer(std::move(name), {"Y"}, texture.Width(), texture.Height(), texture.Codes(), 1, 1);
   }
   const std::span<const float> texels = texture.Texels();
-  return {std::move(name), {"Y"}, texture.Width(), texture.Height(), {texels.begin(), texels.end()}};
+  return {std::move(name), {"Y"}, texture.Width(), texture.Height(), {texels.begin(), texels.end()}, {}, 0};
 }
 
 PassLayer CodesLayer(std::string name, std::vector<std::string> channels, int width, int height,
                      std::span<const std::uint8_t> codes, int codeChannels, int components) {
-  const auto stride = static_cast<std::size_t>(codeChannels), n = static_cast<std::size_t>(components);
-  const std::size_t texels = codes.size() / stride;
-  PassLayer layer{std::move(name), std::move(channels), width, height, std::vector<float>(texels * n)};
-  for (std::size_t i = 0; i < texels; ++i) {
-    for (std::size_t c = 0; c < n; ++c) {
-      layer.values[i * n + c] = c < stride ? sim::Unorm8ToFloat(codes[i * stride + c]) : (c == 3 ? 1.0f : 0.0f);
-    }
-  }
-  return layer;
+  AASIM_CHECK_EQ(channels.size(), static_cast<std::size_t>(components));
+  return {.name = std::move(name), .channels = std::move(channels), .width = width, .height = height, .values = {},
+          .codes = {codes.begin(), codes.end()}, .codeChannels = codeChannels};
+}
+
+std::vector<float> PassLayer::Floats() const {
+  if (codeChannels == 0) return values;
+  std::vector<float> floats(Size());
+  for (std::size_t i = 0; i < floats.size(); ++i) floats[i] = Value(i);
+  return floats;
 }
 
 namespace {

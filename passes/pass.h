@@ -78,6 +78,24 @@ struct PassLayer {
   std::vector<std::string> channels;  // {"Y"}, {"R", "G"}
   int width = 0, height = 0;
   std::vector<float> values;          // row-major, channels interleaved
+  // A layer of an 8-bit texture keeps the texture's codes instead of `values` (a copy of what its
+  // render target held, a quarter of the floats' bytes, decoded only when read): `codeChannels`
+  // bytes per pixel, read as its UNORM view does (code / 255; channels past them 0, alpha 1).
+  std::vector<std::uint8_t> codes;
+  int codeChannels = 0;
+
+  std::size_t Size() const {  // pixels x channels
+    return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels.size();
+  }
+  // Element i of the row-major, channel-interleaved values.
+  float Value(std::size_t i) const {
+    if (codeChannels == 0) return values[i];
+    const std::size_t n = channels.size(), c = i % n, stride = static_cast<std::size_t>(codeChannels);
+    if (c < stride) return sim::Unorm8ToFloat(codes[i / n * stride + c]);
+    return c == 3 ? 1.0f : 0.0f;
+  }
+  // Every value, decoded.
+  std::vector<float> Floats() const;
 };
 
 // A one-channel layer ("Y") holding the texture's values.
@@ -100,7 +118,7 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& te
   const std::span<const glm::vec<N, float>> texels = texture.Texels();
   const float* const first = glm::value_ptr(texels.front());
   return {std::move(name), std::move(channels), texture.Width(), texture.Height(),
-          std::vector<float>(first, first + texels.size() * N)};
+          std::vector<float>(first, first + texels.size() * N), {}, 0};
 }
 
 // The frame's colour as passes with an 8-bit colour target read it: stored into an RGBA8 sRGB

@@ -12,6 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string_view>
 #include <type_traits>
 #include <vector>
@@ -80,23 +81,76 @@ bool ViewCompatible(Format resource, Format view);
 // D3D11 §3.2.3.5 (the code over 2^8 - 1) as llvmpipe computes it: k times float32(1 / 255),
 // which differs from the correctly rounded k / 255 by one ulp on 126 codes (measured as above).
 [[gnu::always_inline]] inline float Unorm8ToFloat(std::uint8_t code) { return static_cast<float>(code) * (1.0f / 255.0f); }
-// FloatToUnorm8 on the N channels of a texel at once (the lanes past N are 0): the same clamp,
+// ---- Whole 8-bit texels in registers ----
+static_assert(std::endian::native == std::endian::little, "8-bit texels are kept as little-endian words");
+// A texel's four 8-bit codes as one word, channel c in bits 8c..8c+7 (the byte order of an RGBA8
+// texel in memory on a little-endian host). The SSE2 forms keep the channels in registers: a
+// texel assembled in memory channel by channel and read back whole stalls on store forwarding.
+
+// FloatToUnorm8 on the N channels of a texel at once (the codes past N are 0): the same clamp,
 // product and rounding (cvtps2dq rounds in the current mode, as the bias does; maxps returns its
-// second operand, 0, for a NaN). Every 8-bit fetch converts up to 16 channels.
+// second operand, 0, for a NaN).
+template <glm::length_t N>
+[[gnu::always_inline]] inline std::uint32_t Unorm8Word(const glm::vec<N, float>& value) {
+#if defined(__SSE2__)
+  __m128 channels;
+  if constexpr (N == 4) {
+    channels = _mm_setr_ps(value[0], value[1], value[2], value[3]);
+  } else if constexpr (N == 3) {
+    channels = _mm_setr_ps(value[0], value[1], value[2], 0.0f);
+  } else if constexpr (N == 2) {
+    channels = _mm_setr_ps(value[0], value[1], 0.0f, 0.0f);
+  } else {
+    channels = _mm_setr_ps(value[0], 0.0f, 0.0f, 0.0f);
+  }
+  const __m128 clamped = _mm_min_ps(_mm_max_ps(channels, _mm_setzero_ps()), _mm_set1_ps(1.0f));
+  const __m128i codes = _mm_cvtps_epi32(_mm_mul_ps(clamped, _mm_set1_ps(255.0f)));
+  const __m128i words = _mm_packs_epi32(codes, codes);  // 0..255 survive both saturating packs
+  return static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_packus_epi16(words, words)));
+#else
+  std::uint32_t word = 0;
+  for (glm::length_t c = 0; c < N; ++c) word |= std::uint32_t{FloatToUnorm8(value[c])} << (8 * c);
+  return word;
+#endif
+}
 template <glm::length_t N>
 [[gnu::always_inline]] inline glm::ivec4 Unorm8Codes(const glm::vec<N, float>& value) {
+  const std::uint32_t word = Unorm8Word(value);
+  return {static_cast<int>(word & 0xFFu), static_cast<int>(word >> 8 & 0xFFu), static_cast<int>(word >> 16 & 0xFFu),
+          static_cast<int>(word >> 24)};
+}
+// Unorm8ToFloat on the four codes of a word.
+[[gnu::always_inline]] inline glm::vec4 Unorm8WordToFloats(std::uint32_t word) {
 #if defined(__SSE2__)
-  alignas(16) float channels[4] = {};
-  for (glm::length_t c = 0; c < N; ++c) channels[c] = value[c];
-  const __m128 clamped = _mm_min_ps(_mm_max_ps(_mm_load_ps(channels), _mm_setzero_ps()), _mm_set1_ps(1.0f));
-  alignas(16) std::int32_t codes[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm_cvtps_epi32(_mm_mul_ps(clamped, _mm_set1_ps(255.0f))));
-  return {codes[0], codes[1], codes[2], codes[3]};
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i bytes = _mm_cvtsi32_si128(static_cast<int>(word));
+  const __m128i ints = _mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero);
+  const __m128 floats = _mm_mul_ps(_mm_cvtepi32_ps(ints), _mm_set1_ps(1.0f / 255.0f));
+  glm::vec4 texel;
+  static_assert(sizeof(texel) == sizeof(floats));
+  std::memcpy(&texel, &floats, sizeof(texel));
+  return texel;
 #else
-  glm::ivec4 codes(0);
-  for (glm::length_t c = 0; c < N; ++c) codes[c] = FloatToUnorm8(value[c]);
-  return codes;
+  return {Unorm8ToFloat(word & 0xFFu), Unorm8ToFloat(word >> 8 & 0xFFu), Unorm8ToFloat(word >> 16 & 0xFFu),
+          Unorm8ToFloat(word >> 24)};
 #endif
+}
+// The codes of an 8-bit texel with `channels` channels as a word, the channels it lacks read as
+// D3D's defaults (0, and alpha 1: code 255).
+[[gnu::always_inline]] inline std::uint32_t CodesWord(const std::uint8_t* codes, int channels) {
+  switch (channels) {
+    case 4: {
+      std::uint32_t word;
+      std::memcpy(&word, codes, 4);
+      return word;
+    }
+    case 2: {
+      std::uint16_t pair;
+      std::memcpy(&pair, codes, 2);
+      return 0xFF000000u | pair;
+    }
+    default: return 0xFF000000u | codes[0];
+  }
 }
 namespace detail {
 // The sRGB conversion tables, built once (formats.cpp) from the double-precision curve. Inline
@@ -252,44 +306,48 @@ template <FormattableTexel T>
 // channels past the format's read 0, and 1 for alpha (D3D11.3 spec §19.1.3.3). These are
 // Quantize and Decode with the texel's codes kept instead of its floats: the same values.
 template <FloatTexel T>
-[[gnu::always_inline]] inline void EncodeCodes(Format view, const T& value, std::uint8_t* codes, int channels) {
-  if constexpr (kTexelComponents<T> >= 3) {
+[[gnu::always_inline]] inline std::uint32_t EncodeWord(Format view, const T& value) {
+  if constexpr (kTexelComponents<T> == 4) {
     if (view == Format::RGBA8Srgb) {
       const detail::SrgbTables& tables = detail::Srgb();
-      codes[0] = EncodeSrgb8(tables, value[0]);
-      codes[1] = EncodeSrgb8(tables, value[1]);
-      codes[2] = EncodeSrgb8(tables, value[2]);
-      codes[3] = FloatToUnorm8(value[3]);
-      return;
+      return std::uint32_t{EncodeSrgb8(tables, value[0])} | std::uint32_t{EncodeSrgb8(tables, value[1])} << 8 |
+             std::uint32_t{EncodeSrgb8(tables, value[2])} << 16 | std::uint32_t{FloatToUnorm8(value[3])} << 24;
     }
   }
   if constexpr (kTexelComponents<T> == 1) {
-    codes[0] = FloatToUnorm8(value);
+    return FloatToUnorm8(value);
   } else {
-    const glm::ivec4 unorm = Unorm8Codes(value);
-    for (int c = 0; c < channels; ++c) codes[c] = static_cast<std::uint8_t>(unorm[c]);
+    return Unorm8Word(value);
   }
 }
 template <FloatTexel T>
-[[gnu::always_inline]] inline T DecodeCodes(const std::uint8_t* codes, int channels, bool srgb) {
+[[gnu::always_inline]] inline void EncodeCodes(Format view, const T& value, std::uint8_t* codes, int channels) {
+  const std::uint32_t word = EncodeWord(view, value);
+  std::memcpy(codes, &word, static_cast<std::size_t>(channels));  // little-endian: channel 0 first
+}
+// The first components of a decoded RGBA texel.
+template <FloatTexel T>
+[[gnu::always_inline]] inline T TexelOf(const glm::vec4& rgba) {
   if constexpr (kTexelComponents<T> == 1) {
-    return Unorm8ToFloat(codes[0]);
+    return rgba.x;
   } else {
-    T texel(0.0f);
-    if constexpr (kTexelComponents<T> == 4) texel[3] = 1.0f;
-    if constexpr (kTexelComponents<T> == 4) {
-      if (srgb) {  // only RGBA8 is sRGB
-        const float* const decode = detail::Srgb().decode.data();
-        texel[0] = decode[codes[0]];
-        texel[1] = decode[codes[1]];
-        texel[2] = decode[codes[2]];
-        texel[3] = Unorm8ToFloat(codes[3]);
-        return texel;
-      }
-    }
-    for (int c = 0; c < channels; ++c) texel[c] = Unorm8ToFloat(codes[c]);
-    return texel;
+    return T(rgba);
   }
+}
+template <FloatTexel T>
+[[gnu::always_inline]] inline T DecodeWord(std::uint32_t word, bool srgb) {
+  if constexpr (kTexelComponents<T> == 4) {
+    if (srgb) {  // only RGBA8 is sRGB
+      const float* const decode = detail::Srgb().decode.data();
+      return {decode[word & 0xFFu], decode[word >> 8 & 0xFFu], decode[word >> 16 & 0xFFu],
+              Unorm8ToFloat(static_cast<std::uint8_t>(word >> 24))};
+    }
+  }
+  return TexelOf<T>(Unorm8WordToFloats(word));
+}
+template <FloatTexel T>
+[[gnu::always_inline]] inline T DecodeCodes(const std::uint8_t* codes, int channels, bool srgb) {
+  return DecodeWord<T>(CodesWord(codes, channels), srgb);
 }
 
 // ---- Fixed-point bilinear filtering of 8-bit UNORM texels ----
@@ -302,13 +360,16 @@ struct FixedPointCoord {
   int texel;   // left (or top) texel of the footprint, before offsets and addressing
   int weight;  // 0..255, weight of the right (or bottom) texel in 1/256
 };
-inline FixedPointCoord ToFixedPointCoord(float normalised, int size) {
-  // size * 256 <= 2^22 is exact in float; clamping the product to +-2^30 keeps the rounded
-  // value inside int. NaN takes the coordinate 0 (a NaN coordinate is undefined in D3D).
-  static_assert(raster::kMaxDimension * 256 < (1 << 24));
+// `scale` is the texture's size times 256 as a float (exact: size * 256 <= 2^22).
+[[gnu::always_inline]] inline FixedPointCoord ToFixedPointCoordScaled(float normalised, float scale) {
+  // Clamping the product to +-2^30 keeps the rounded value inside int. NaN takes the coordinate
+  // 0 (a NaN coordinate is undefined in D3D). Three selects, no branch: every bilinear fetch of
+  // an 8-bit texture converts two coordinates.
   constexpr float kLimit = 1073741824.0f;
-  float scaled = std::clamp(normalised * static_cast<float>(size * 256), -kLimit, kLimit);
-  if (std::isnan(scaled)) scaled = 0.0f;
+  float scaled = normalised * scale;
+  scaled = scaled == scaled ? scaled : 0.0f;
+  scaled = scaled > -kLimit ? scaled : -kLimit;
+  scaled = scaled < kLimit ? scaled : kLimit;
 #if defined(__SSE__) || defined(__x86_64__)
   // cvtss2si: lrint's rounding (the current mode, to nearest even) without its library call.
   const int s = _mm_cvtss_si32(_mm_set_ss(scaled)) - 128;
@@ -317,10 +378,22 @@ inline FixedPointCoord ToFixedPointCoord(float normalised, int size) {
 #endif
   return {s >> 8, s & 255};
 }
+inline FixedPointCoord ToFixedPointCoord(float normalised, int size) {
+  static_assert(raster::kMaxDimension * 256 < (1 << 24));
+  return ToFixedPointCoordScaled(normalised, static_cast<float>(size * 256));
+}
 
 // lerp(w, a, b) = a + ((w * (b - a) + 128) >> 8) on 8-bit codes: llvmpipe's lp_build_lerp
 // with prescaled weights on its SSSE3/AVX2 path (pmulhrsw of w and (b - a) << 7 rounds this
 // way; without SSSE3 it truncates instead). The result lies between a and b.
 constexpr int LerpUnorm8(int weight, int a, int b) { return a + ((weight * (b - a) + 128) >> 8); }
+[[gnu::always_inline]] inline std::uint32_t LerpUnorm8Word(int weight, std::uint32_t a, std::uint32_t b) {
+  std::uint32_t result = 0;
+  for (int shift = 0; shift < 32; shift += 8) {
+    const int lerped = LerpUnorm8(weight, static_cast<int>(a >> shift & 0xFFu), static_cast<int>(b >> shift & 0xFFu));
+    result |= static_cast<std::uint32_t>(lerped) << shift;
+  }
+  return result;
+}
 
 }  // namespace sim

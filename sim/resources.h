@@ -39,10 +39,27 @@ class Resource {
     Touch(writtenLines_, byteOffset, bytes);
   }
   std::uint64_t LinesRead() const { return CountBits(readLines_); }
+  // The read-line bits, for views that mark lines without going through the resource
+  // (TouchBytes); the vector never reallocates after construction.
+  std::uint64_t* ReadLines() const { return readLines_.data(); }
+  // Marks the lines of bytes [byteOffset, byteOffset + bytes), bytes <= kCacheLineBytes, in
+  // `lines` (at most two lines).
+  [[gnu::always_inline]] static void TouchBytes(std::uint64_t* lines, std::size_t byteOffset, std::size_t bytes) {
+    const std::size_t first = byteOffset / kCacheLineBytes;
+    const std::size_t last = (byteOffset + bytes - 1) / kCacheLineBytes;
+    MarkLine(lines, first);
+    if (last != first) MarkLine(lines, last);
+  }
   std::uint64_t LinesWritten() const { return CountBits(writtenLines_); }
 
  private:
   static void Touch(std::vector<std::uint64_t>& lines, std::size_t byteOffset, std::size_t bytes);
+  [[gnu::always_inline]] static void MarkLine(std::uint64_t* lines, std::size_t line) {
+    std::atomic_ref<std::uint64_t> word(lines[line / 64]);
+    const std::uint64_t bit = std::uint64_t{1} << (line % 64);
+    // Most touches hit a line already seen: a relaxed load avoids the locked OR.
+    if ((word.load(std::memory_order_relaxed) & bit) == 0) word.fetch_or(bit, std::memory_order_relaxed);
+  }
   static std::uint64_t CountBits(const std::vector<std::uint64_t>& lines);
 
   std::string name_;
@@ -57,13 +74,7 @@ class Resource {
                                                    std::size_t bytes) {
   const std::size_t first = byteOffset / kCacheLineBytes;
   const std::size_t last = (byteOffset + bytes - 1) / kCacheLineBytes;
-  for (std::size_t line = first; line <= last; ++line) {
-    std::uint64_t& word = lines[line / 64];
-    const std::uint64_t bit = std::uint64_t{1} << (line % 64);
-    std::atomic_ref<std::uint64_t> ref(word);
-    // Most touches hit a line already seen: a relaxed load avoids the locked OR.
-    if ((ref.load(std::memory_order_relaxed) & bit) == 0) ref.fetch_or(bit, std::memory_order_relaxed);
-  }
+  for (std::size_t line = first; line <= last; ++line) MarkLine(lines.data(), line);
 }
 
 // Row-major texels. Without a Format the host keeps T unchanged and texelBytes is only the

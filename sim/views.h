@@ -73,12 +73,14 @@ namespace detail {
 [[noreturn, gnu::noinline, gnu::cold]] inline void ThrowBadTexelArgument(const LaneBase& lane, const std::string& what) {
   throw KernelError(lane.chunk->dispatch->name + ": " + what);
 }
+[[noreturn, gnu::noinline, gnu::cold]] inline void ThrowBadTexelOffset(const LaneBase& lane, glm::ivec2 offset) {
+  ThrowBadTexelArgument(lane, "texel offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
+                                  ") outside -8..7");
+}
+// The message is built out of line: every fetch inlines this check.
 [[gnu::always_inline]] inline void CheckTexelOffset(const LaneBase& lane, glm::ivec2 offset) {
-  if (offset.x < kMinTexelOffset || offset.x > kMaxTexelOffset || offset.y < kMinTexelOffset ||
-      offset.y > kMaxTexelOffset) {
-    ThrowBadTexelArgument(lane, "texel offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
-                                    ") outside -8..7");
-  }
+  const auto outside = [](int o) { return static_cast<unsigned>(o - kMinTexelOffset) > kMaxTexelOffset - kMinTexelOffset; };
+  if (outside(offset.x) || outside(offset.y)) [[unlikely]] ThrowBadTexelOffset(lane, offset);
 }
 }  // namespace detail
 
@@ -200,10 +202,13 @@ class TextureView {
     width_ = texture_->Width();
     height_ = texture_->Height();
     texelBytes_ = static_cast<std::size_t>(texture_->TexelBytes());
+    AASIM_CHECK_LE(texelBytes_, static_cast<std::size_t>(kCacheLineBytes) / 2);  // TouchBytes marks a texel pair
     codeChannels_ = texture_->CodeChannels();
     codes_ = texture_->KeepsCodes() ? texture_->Codes().data() : nullptr;
     texels_ = texture_->KeepsCodes() ? nullptr : texture_->Texels().data();
     srgb_ = format_ == Format::RGBA8Srgb;
+    fixedScale_ = {static_cast<float>(width_ * 256), static_cast<float>(height_ * 256)};
+    readLines_ = texture_->ReadLines();
     filterUnorm8_ = format_ && IsUnorm8(*format_);
   }
   [[gnu::always_inline]] bool Contains(int x, int y) const {
@@ -224,23 +229,21 @@ class TextureView {
   T SampleBilinearUnorm8(const LaneBase& lane, glm::vec2 uv, AddressMode mode, glm::ivec2 offset) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 4);
-    const FixedPointCoord cx = ToFixedPointCoord(uv.x, width_), cy = ToFixedPointCoord(uv.y, height_);
+    const FixedPointCoord cx = ToFixedPointCoordScaled(uv.x, fixedScale_.x);
+    const FixedPointCoord cy = ToFixedPointCoordScaled(uv.y, fixedScale_.y);
     const int x0 = cx.texel + offset.x, y0 = cy.texel + offset.y;
     const int xa = Address(x0, width_, mode), x1 = Address(x0 + 1, width_, mode);
     const int ya = Address(y0, height_, mode), y1 = Address(y0 + 1, height_, mode);
     TouchFootprint(xa, x1, ya, y1);
     // At a texel centre both weights are 0 and every lerp returns its first code: the stored
     // texel. The footprint is still fetched and counted.
-    if (cx.weight == 0 && cy.weight == 0) return DecodeCodes<T>(CodesAt(Index(xa, ya)), codeChannels_, false);
-    const std::uint8_t *c00 = CodesAt(Index(xa, ya)), *c10 = CodesAt(Index(x1, ya));
-    const std::uint8_t *c01 = CodesAt(Index(xa, y1)), *c11 = CodesAt(Index(x1, y1));
-    T result = DecodeCodes<T>(c00, 0, false);  // the defaults of the channels past the format's
-    for (int c = 0; c < codeChannels_; ++c) {
-      const int top = LerpUnorm8(cx.weight, c00[c], c10[c]);
-      const int bottom = LerpUnorm8(cx.weight, c01[c], c11[c]);
-      TexelComponent(result, c) = Unorm8ToFloat(static_cast<std::uint8_t>(LerpUnorm8(cy.weight, top, bottom)));
-    }
-    return result;
+    const std::uint32_t t00 = CodesWord(CodesAt(Index(xa, ya)), codeChannels_);
+    if (cx.weight == 0 && cy.weight == 0) return DecodeWord<T>(t00, false);
+    const std::uint32_t t10 = CodesWord(CodesAt(Index(x1, ya)), codeChannels_);
+    const std::uint32_t t01 = CodesWord(CodesAt(Index(xa, y1)), codeChannels_);
+    const std::uint32_t t11 = CodesWord(CodesAt(Index(x1, y1)), codeChannels_);
+    const std::uint32_t top = LerpUnorm8Word(cx.weight, t00, t10), bottom = LerpUnorm8Word(cx.weight, t01, t11);
+    return DecodeWord<T>(LerpUnorm8Word(cy.weight, top, bottom), false);
   }
   [[gnu::always_inline]] const std::uint8_t* CodesAt(std::size_t index) const {
     return codes_ + index * static_cast<std::size_t>(codeChannels_);
@@ -252,14 +255,14 @@ class TextureView {
     traffic.bytesRead += static_cast<std::uint64_t>(texels) * texelBytes_;
   }
   [[gnu::always_inline]] void TouchTexel(std::size_t index) const {
-    texture_->TouchRead(index * texelBytes_, texelBytes_);
+    Resource::TouchBytes(readLines_, index * texelBytes_, texelBytes_);
   }
   // Columns x0 and x1 (equal, neighbours or wrapped) of row y, all inside the texture: the lines
   // their texels lie on, one range when they are neighbours in memory.
   [[gnu::always_inline]] void TouchRow(int x0, int x1, int y) const {
     const std::size_t first = Index(x0, y);
     if (x1 == x0 + 1) {
-      texture_->TouchRead(first * texelBytes_, 2 * texelBytes_);
+      Resource::TouchBytes(readLines_, first * texelBytes_, 2 * texelBytes_);
       return;
     }
     TouchTexel(first);
@@ -287,6 +290,8 @@ class TextureView {
   const std::uint8_t* codes_ = nullptr;
   int codeChannels_ = 0;
   const T* texels_ = nullptr;
+  glm::vec2 fixedScale_{0.0f};  // ToFixedPointCoordScaled's scales
+  std::uint64_t* readLines_ = nullptr;  // the texture's read-line bits (Resource::TouchRead)
   bool srgb_ = false;          // an sRGB view: RGB codes decode through the curve
   bool filterUnorm8_ = false;  // a UNORM8 view: bilinear in 8-bit fixed point
 };
@@ -322,9 +327,7 @@ class RwTextureView {
     read_.texture_->TouchWrite(index * read_.texelBytes_, read_.texelBytes_);
     if constexpr (FloatTexel<T>) {
       if (codes_ != nullptr) {
-        std::array<std::uint8_t, 4> encoded{};
-        EncodeCodes(*read_.format_, value, encoded.data(), read_.codeChannels_);
-        StoreCodes(index, encoded);
+        StoreCodes(index, EncodeWord(*read_.format_, value));
         return;
       }
     }
@@ -344,23 +347,19 @@ class RwTextureView {
     }
     return value;
   }
-  // A texel's codes as one relaxed atomic store (a 1, 2 or 4-byte aligned word), as StoreRelaxed.
-  [[gnu::always_inline]] void StoreCodes(std::size_t index, const std::array<std::uint8_t, 4>& encoded) const {
+  // A texel's codes (channel 0 in the low byte of `word`) as one relaxed atomic store of its 1, 2
+  // or 4 aligned bytes, as StoreRelaxed does for T.
+  [[gnu::always_inline]] void StoreCodes(std::size_t index, std::uint32_t word) const {
     std::uint8_t* const at = codes_ + index * static_cast<std::size_t>(read_.codeChannels_);
     switch (read_.codeChannels_) {
-      case 4: {
-        std::uint32_t word;
-        std::memcpy(&word, encoded.data(), 4);
+      case 4:
         std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(at)).store(word, std::memory_order_relaxed);
         return;
-      }
-      case 2: {
-        std::uint16_t half;
-        std::memcpy(&half, encoded.data(), 2);
-        std::atomic_ref<std::uint16_t>(*reinterpret_cast<std::uint16_t*>(at)).store(half, std::memory_order_relaxed);
+      case 2:
+        std::atomic_ref<std::uint16_t>(*reinterpret_cast<std::uint16_t*>(at))
+            .store(static_cast<std::uint16_t>(word), std::memory_order_relaxed);
         return;
-      }
-      default: std::atomic_ref<std::uint8_t>(*at).store(encoded[0], std::memory_order_relaxed);
+      default: std::atomic_ref<std::uint8_t>(*at).store(static_cast<std::uint8_t>(word), std::memory_order_relaxed);
     }
   }
 

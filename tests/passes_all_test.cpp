@@ -88,7 +88,7 @@ TEST_P(EveryPass, DeclaresWhatTheStudyNeeds) {
 TEST_P(EveryPass, DeclaresTheBytesOfTheLayersItReturns) {
   const PassRun run = RunPass(Pass(), Info().strategies.front(), 2);
   std::uint64_t bytes = 0;
-  for (const PassLayer& layer : run.output.layers) bytes += layer.values.size() * sizeof(float);
+  for (const PassLayer& layer : run.output.layers) bytes += layer.values.size() * sizeof(float) + layer.codes.size();
   EXPECT_EQ(bytes, Info().layerBytesPerPixel * std::uint64_t(kWidth) * std::uint64_t(kHeight));
 }
 

@@ -35,7 +35,7 @@ PassOutput RunDemo(sim::Machine& machine, const sim::Texture2D<glm::vec4>& input
 
 float EdgeAt(const PassOutput& output, int x, int y) {
   const PassLayer& edges = output.layers.at(0);
-  return edges.values.at(static_cast<std::size_t>(y) * static_cast<std::size_t>(edges.width) + static_cast<std::size_t>(x));
+  return edges.Floats().at(static_cast<std::size_t>(y) * static_cast<std::size_t>(edges.width) + static_cast<std::size_t>(x));
 }
 
 // Slow host reference of the same rule, written without the machine.

@@ -101,7 +101,7 @@ TEST(FilmicSmaaT2x, TheFilteredPixelsKeepExpOfMinusDtOverTauOfTheHistoryAtTwoFra
   const SequenceRun current = RunSequence("filmic-smaa-t2x:convergence_time=0.001", 2, make, Strategy::StencilCulled);
   const double expectedRatio = std::exp(-(1.0 / 60.0) / kTau) / std::exp(-(1.0 / 30.0) / kTau);
   const PassLayer& edges = testing::LayerNamed(fast.outputs[1], "temporal-edges");
-  ASSERT_EQ(edges.values, testing::LayerNamed(slow.outputs[1], "temporal-edges").values);
+  ASSERT_EQ(edges.Floats(), testing::LayerNamed(slow.outputs[1], "temporal-edges").Floats());
   int checked = 0;
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) {
@@ -153,7 +153,7 @@ TEST(FilmicSmaaT2x, StrategiesAndThreadsGiveIdenticalImagesAndCountersOverASeque
     EXPECT_TRUE(CompareOutputs(stencil.outputs[k], queue.outputs[k]).Identical())
         << k << ": " << CompareOutputs(stencil.outputs[k], queue.outputs[k]).Describe();
     EXPECT_TRUE(CompareOutputs(queue.outputs[k], queueOne.outputs[k]).Identical()) << k;
-    for (const float v : testing::LayerNamed(stencil.outputs[k], "temporal-edges").values) temporalItems += v != 0.0f;
+    for (const float v : testing::LayerNamed(stencil.outputs[k], "temporal-edges").Floats()) temporalItems += v != 0.0f;
   }
   EXPECT_GT(temporalItems, 0u);
   sim::testing::ExpectSameReports(queue.reports, queueOne.reports);

@@ -320,8 +320,8 @@ TEST(SmaaFourX, StrategiesAndThreadsGiveIdenticalImagesAndCountersOverASequence)
   sim::testing::ExpectSameReports(queue.reports, queueOneThread.reports);
   // Frame 1's sample runs use the second frame's indices: its weights differ from frame 0's on a
   // static scene.
-  EXPECT_NE(testing::LayerNamed(stencil.outputs[0], "weights.s0").values,
-            testing::LayerNamed(stencil.outputs[1], "weights.s0").values);
+  EXPECT_NE(testing::LayerNamed(stencil.outputs[0], "weights.s0").Floats(),
+            testing::LayerNamed(stencil.outputs[1], "weights.s0").Floats());
 }
 
 }  // namespace

@@ -55,7 +55,9 @@ inline const PassLayer& LayerNamed(const PassOutput& output, std::string_view na
 // Channel `channel` of the layer at (x, y).
 inline float LayerValue(const PassLayer& layer, int x, int y, int channel = 0) {
   const std::size_t pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(layer.width) + static_cast<std::size_t>(x);
-  return layer.values.at(pixel * layer.channels.size() + static_cast<std::size_t>(channel));
+  const std::size_t at = pixel * layer.channels.size() + static_cast<std::size_t>(channel);
+  if (at >= layer.Size()) throw std::out_of_range("layer " + layer.name + ": no value " + std::to_string(at));
+  return layer.Value(at);
 }
 
 }  // namespace passes::testing

@@ -237,7 +237,7 @@ FrameRun RunFrame(int threads) {
       demo.Make()->Run(machine, passes::FrameInputsOf(frame), passes::Strategy::StencilCulled);
   const passes::PassOutput queue = demo.Make()->Run(machine, passes::FrameInputsOf(frame), passes::Strategy::DeferredQueue);
   auto layerBytes = [](const passes::PassOutput& output) {
-    const std::vector<float>& values = output.layers.at(0).values;
+    const std::vector<float> values = output.layers.at(0).Floats();
     std::vector<std::byte> bytes(values.size() * sizeof(float));
     std::memcpy(bytes.data(), values.data(), bytes.size());
     return bytes;

@@ -219,7 +219,7 @@ class Cmaa2Pass final : public Pass {
   }
 
   static PassLayer EdgesLayer(const sim::Texture2D<std::uint32_t>& edges, int width, int height) {
-    PassLayer layer{"edges", {"Y"}, width, height, {}};
+    PassLayer layer{"edges", {"Y"}, width, height, {}, {}, 0};
     layer.values.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) layer.values.push_back(static_cast<float>((edges.At(x / 2, y) >> (x % 2 * 4)) & 0xFu));
@@ -228,7 +228,7 @@ class Cmaa2Pass final : public Pass {
   }
 
   PassLayer CandidatesLayer(Strategy strategy, int width, int height) const {
-    PassLayer layer{"candidates", {"Y"}, width, height, {}};
+    PassLayer layer{"candidates", {"Y"}, width, height, {}, {}, 0};
     for (const std::uint8_t joined : workSet_.Membership(strategy)) layer.values.push_back(joined);
     return layer;
   }

@@ -55,7 +55,7 @@ const PassInfo& Info() {
       // The colour copy, the output target and its decoded copy (vec4 each), edges and their layer,
       // the items layer, membership and shape bytes, the stencil byte and two full-size queues.
       .bytesPerPixel = 3 * sizeof(glm::vec4) + sizeof(glm::vec2) + 3 * sizeof(float) + 3 + 2 * sizeof(std::uint32_t),
-      .layerBytesPerPixel = (2 + 1) * sizeof(float),  // edges (R, G), items
+      .layerBytesPerPixel = 2 + sizeof(float),  // edges (RG8 codes), items
       .temporal = false,
       .variantOf = "smaa",
   };

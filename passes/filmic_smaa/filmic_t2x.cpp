@@ -338,7 +338,7 @@ const PassInfo& FilmicT2xInfo() {
       // work sets' stencil bytes, memberships and queue entries.
       .bytesPerPixel =
           7 * sizeof(glm::vec4) + 3 * sizeof(glm::vec2) + 8 * sizeof(float) + 4 + 3 * sizeof(std::uint32_t),
-      .layerBytesPerPixel = (2 + 1 + 1) * sizeof(float),
+      .layerBytesPerPixel = 2 + (1 + 1) * sizeof(float),  // edges (RG8 codes), two float layers
       .temporal = true,
       .jitter = "t2x",
       .variantOf = "filmic-smaa",

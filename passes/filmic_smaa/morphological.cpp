@@ -97,7 +97,7 @@ Config ConfigOf(const PassSettings& settings) {
 }
 
 PassLayer ItemsLayer(const std::vector<std::uint8_t>& membership, int width, int height) {
-  PassLayer layer{"items", {"Y"}, width, height, {}};
+  PassLayer layer{"items", {"Y"}, width, height, {}, {}, 0};
   for (const std::uint8_t joined : membership) layer.values.push_back(joined);
   return layer;
 }

@@ -132,7 +132,7 @@ class FxaaPass final : public Pass {
   }
 
   static PassLayer AlphaLayer(const sim::Texture2D<glm::vec4>& rgbl) {
-    PassLayer layer{"luma", {"Y"}, rgbl.Width(), rgbl.Height(), {}};
+    PassLayer layer{"luma", {"Y"}, rgbl.Width(), rgbl.Height(), {}, {}, 0};
     const std::span<const std::uint8_t> codes = rgbl.Codes();  // RGBA8: alpha is every fourth byte
     layer.values.reserve(codes.size() / 4);
     for (std::size_t i = 3; i < codes.size(); i += 4) layer.values.push_back(sim::Unorm8ToFloat(codes[i]));
@@ -140,7 +140,7 @@ class FxaaPass final : public Pass {
   }
 
   PassLayer SpanLayer(int width, int height) const {
-    PassLayer layer{"span", {"direction", "dstN", "dstP", "offset"}, width, height, {}};
+    PassLayer layer{"span", {"direction", "dstN", "dstP", "offset"}, width, height, {}, {}, 0};
     for (const glm::vec4& span : spans_) layer.values.insert(layer.values.end(), {span.x, span.y, span.z, span.w});
     return layer;
   }

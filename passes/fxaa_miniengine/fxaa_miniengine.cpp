@@ -255,7 +255,7 @@ class FxaaMiniEnginePass final : public Pass {
       for (int x = 0; x < width; ++x) output.colour.At(x, y) = glm::vec4(colour.At(x, y), 1.0f);
     }
     output.layers.push_back(LayerOf("luma", luma));
-    output.layers.push_back({"items", {"Y"}, width, height, std::move(items)});
+    output.layers.push_back({"items", {"Y"}, width, height, std::move(items), {}, 0});
     return output;
   }
 
@@ -294,7 +294,7 @@ const PassInfo& Info() {
       // vec4, membership and stencil bytes, the stencil form's two R32 records, and the queue's
       // item and colour words (a quarter of the screen).
       .bytesPerPixel = sizeof(glm::vec3) + 3 * sizeof(float) + sizeof(glm::vec4) + 2 + 2 * sizeof(std::uint32_t) + 2,
-      .layerBytesPerPixel = 2 * sizeof(float),  // luma, items
+      .layerBytesPerPixel = 1 + sizeof(float),  // luma (R8 codes), items
       .temporal = false,
       .variantOf = "fxaa",
   };

@@ -92,7 +92,7 @@ class HraaPass final : public Pass {
     output.colour = sim::Texture2D<glm::vec4>("hraa/output", width, height, 8);
     std::copy(next.Texels().begin(), next.Texels().end(), output.colour.Texels().begin());
     output.layers.push_back(Validity(width, height));
-    output.layers.push_back(PassLayer{"feedback", {"Y"}, width, height, feedback_});
+    output.layers.push_back(PassLayer{"feedback", {"Y"}, width, height, feedback_, {}, 0});
     output.SetWorkSet(FullScreenShape(width, height));
     return output;
   }
@@ -142,7 +142,7 @@ class HraaPass final : public Pass {
   // The TFQ's validity per pixel; all NoHistory (0) when the TFQ is off.
   PassLayer Validity(int width, int height) const {
     if (params_.tfq) return stage_.ValidityLayer();
-    return PassLayer{"validity", {"Y"}, width, height, std::vector<float>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f)};
+    return PassLayer{"validity", {"Y"}, width, height, std::vector<float>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f), {}, 0};
   }
 
   TaaParams params_;

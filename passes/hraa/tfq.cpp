@@ -230,7 +230,7 @@ void TfqStage::Unsharp(sim::Machine& machine, const sim::Texture2D<glm::vec4>& i
 
 PassLayer TfqStage::ValidityLayer() const {
   const sim::Texture2D<glm::vec4>& any = *resolved_;
-  PassLayer layer{"validity", {"Y"}, any.Width(), any.Height(), {}};
+  PassLayer layer{"validity", {"Y"}, any.Width(), any.Height(), {}, {}, 0};
   layer.values.assign(validity_.begin(), validity_.end());
   return layer;
 }

@@ -339,7 +339,7 @@ PassInfo MakeInfo(Thresholding thresholding) {
       // (2 floats), and per pass a stencil byte and a queue entry.
       .bytesPerPixel = 4 * sizeof(glm::vec4) + 2 * (sizeof(glm::vec4) + 4 * sizeof(float)) +
                        2 * (sizeof(glm::vec2) + 2 * sizeof(float)) + 2 * (1 + sizeof(std::uint32_t)),
-      .layerBytesPerPixel = 2 * (4 + 2) * sizeof(float),  // edges-h, edges-v, weights-h, weights-v
+      .layerBytesPerPixel = 2 * 4 + 2 * 2 * sizeof(float),  // edges-h, edges-v (RGBA8 codes), weights-h, weights-v
       .temporal = false,
       .variantOf = thresholding == Thresholding::Relative ? "" : "mlaa",
   };

@@ -126,7 +126,7 @@ PassInfo MakeInfo(Variant variant) {
       // S2x holds both samples' runs and the two separated sample textures at once.
       .bytesPerPixel = variant == Variant::S2x ? 2 * kBytesPerPixel + 2 * sizeof(glm::vec4) : kBytesPerPixel,
       // Edges (R, G) and weights (R, G, B, A), per sample run for S2x.
-      .layerBytesPerPixel = (variant == Variant::S2x ? 2 : 1) * (2 + 4) * sizeof(float),
+      .layerBytesPerPixel = (variant == Variant::S2x ? 2u : 1u) * (2u + 4u),  // RG8 and RGBA8 codes
       .temporal = false,
       .eqaaSamples = variant == Variant::S2x ? 2 : 0,
       .variantOf = variant == Variant::Luma ? "" : "smaa",

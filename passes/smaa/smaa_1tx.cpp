@@ -135,7 +135,7 @@ const PassInfo& OneTxInfo() {
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       // SMAA 1x's, plus the two history targets, the velocity and the decoded output.
       .bytesPerPixel = kBytesPerPixel + 3 * sizeof(glm::vec4) + sizeof(glm::vec2),
-      .layerBytesPerPixel = (2 + 4) * sizeof(float),
+      .layerBytesPerPixel = 2 + 4,  // edges RG8, weights RGBA8 codes
       .temporal = true,
       .jitter = "none",
       .variantOf = "smaa",

@@ -202,7 +202,7 @@ const PassInfo& T2xInfo() {
       .studiedDispatches = {"smaa-t2x/blending-weights"},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       .bytesPerPixel = kBytesPerPixel + kTemporalBytesPerPixel,
-      .layerBytesPerPixel = (2 + 4) * sizeof(float),
+      .layerBytesPerPixel = 2 + 4,  // edges RG8, weights RGBA8 codes
       .temporal = true,
       .jitter = "t2x",
       .variantOf = "smaa",
@@ -223,7 +223,7 @@ const PassInfo& FourXInfo() {
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       // Both sample runs and the two separated samples, plus the history.
       .bytesPerPixel = 2 * kBytesPerPixel + 2 * sizeof(glm::vec4) + kTemporalBytesPerPixel,
-      .layerBytesPerPixel = 2 * (2 + 4) * sizeof(float),
+      .layerBytesPerPixel = 2 * (2 + 4),  // per sample run: edges RG8, weights RGBA8 codes
       .temporal = true,
       .jitter = "4x",
       .eqaaSamples = 2,

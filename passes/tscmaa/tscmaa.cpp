@@ -162,7 +162,7 @@ std::pair<const sim::Texture2D<glm::vec4>&, const sim::Texture2D<std::uint32_t>&
   sim::Texture2D<glm::vec4>& colour = FrameTexture(cmaaColour_, "tscmaa/cmaa-colour", width, height, sim::Format::RGBA8Srgb);
   StoreSrgb8(cmaa.colour, colour);
   sim::Texture2D<std::uint32_t>& edges = FrameTexture(cmaaEdges_, "tscmaa/cmaa-edges", width, height, 1);
-  const std::vector<float>& bits = LayerNamed(cmaa, "edges").values;
+  const std::vector<float> bits = LayerNamed(cmaa, "edges").Floats();
   for (std::size_t i = 0; i < bits.size(); ++i) edges.Texels()[i] = static_cast<std::uint32_t>(bits[i]);
   return {colour, edges};
 }
@@ -214,7 +214,7 @@ PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
   output.colour = DecodedSrgb8("tscmaa/output", write);
   output.layers.push_back(LayerNamed(cmaa, "edges"));
   output.layers.push_back(LayerNamed(cmaa, "candidates"));
-  PassLayer taa{"taa-candidates", {"Y"}, width, height, {}};
+  PassLayer taa{"taa-candidates", {"Y"}, width, height, {}, {}, 0};
   for (const std::uint8_t joined : workSet_.Membership(strategy)) taa.values.push_back(joined);
   output.layers.push_back(std::move(taa));
   return output;
