@@ -23,10 +23,16 @@ class TileHeatMap {
   int TilesY() const { return tilesY_; }
   bool Empty() const { return tilesX_ == 0; }
 
-  void Add(int x, int y, LaneKind kind) {
+  void Add(int x, int y, LaneKind kind, std::uint32_t lanes = 1) {
     if (std::uint32_t* count = Count(x, y, kind)) {
-      std::atomic_ref<std::uint32_t>(*count).fetch_add(1, std::memory_order_relaxed);
+      std::atomic_ref<std::uint32_t>(*count).fetch_add(lanes, std::memory_order_relaxed);
     }
+  }
+  // The tile (x, y) falls in, as one number; -1 off the map. Lanes of one tile can be added at
+  // once (Add with a count): a compute group over a pixel grid is usually one 8x8 tile.
+  long long TileOf(int x, int y) const {
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
+    return static_cast<long long>(Index(x / kTileSize, y / kTileSize));
   }
   // Add for a caller that alone adds to (x, y)'s tile during this dispatch: a pixel wave's bin
   // (32 px, whole 8x8 tiles) is one chunk on one host thread, so its lanes' tiles need no atomic

@@ -188,19 +188,36 @@ void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8
   LaneCounters& counters = chunk.lanes;
   ++counters.groups;
   counters.barriers += barriers;
+  // Active lanes go to the heat map in runs of one tile, one atomic add per run.
+  long long runTile = -1;
+  std::uint32_t runLanes = 0;
+  glm::ivec2 runPixel{0};
+  const auto flush = [&] {
+    if (runLanes != 0) chunk.heat->Add(runPixel.x, runPixel.y, LaneKind::Active, runLanes);
+    runLanes = 0;
+  };
   for (int wave = 0; wave < wavesPerGroup; ++wave) {
     int active = 0;
     for (int lane = 0; lane < kWaveLanes; ++lane) {
       const auto i = static_cast<std::size_t>(wave * kWaveLanes + lane);
-      const bool isActive = i < live.size() && live[i] != 0;
-      active += isActive;
-      counters.CountLane(isActive ? LaneKind::Active : LaneKind::DeadEmpty);
-      if (isActive) chunk.heat->Add(attribution[i].x, attribution[i].y, LaneKind::Active);
+      if (i >= live.size() || live[i] == 0) continue;
+      ++active;
+      const long long tile = chunk.heat->TileOf(attribution[i].x, attribution[i].y);
+      if (tile < 0) continue;
+      if (tile != runTile) {
+        flush();
+        runTile = tile;
+        runPixel = attribution[i];
+      }
+      ++runLanes;
     }
+    counters.lanesActive += static_cast<std::uint64_t>(active);
+    counters.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes - active);
     ++counters.waves;
     counters.lanesLaunched += kWaveLanes;
     ++counters.wavesByActiveLanes[static_cast<std::size_t>(active)];
   }
+  flush();
   if (itemCountSlot >= 0) {
     ResourceTraffic& traffic = chunk.traffic[static_cast<std::size_t>(itemCountSlot)];
     traffic.fetches += static_cast<std::uint64_t>(wavesPerGroup);

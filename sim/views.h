@@ -219,7 +219,11 @@ class TextureView {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   }
   [[gnu::always_inline]] static int Address(int i, int size, AddressMode mode) {
-    if (mode == AddressMode::Clamp) return std::clamp(i, 0, size - 1);
+    if (mode == AddressMode::Clamp) [[likely]] return std::clamp(i, 0, size - 1);
+    return Wrap(i, size);
+  }
+  // Out of line: inlined, the compiler computes the division for every clamped coordinate too.
+  [[gnu::noinline]] static int Wrap(int i, int size) {
     const int r = i % size;
     return r < 0 ? r + size : r;
   }
