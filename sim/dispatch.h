@@ -281,6 +281,9 @@ class Machine {
                                       const PixelTargets& targets, Stages&... stages);
   // Classifies every lane of a pixel wave and sets all of them up before any runs (a kernel reads
   // its quad neighbours), counting lanes, heat and the wave; returns the wave's EXEC mask.
+  // What a pixel lane is within its wave does not change from wave to wave: set once per chunk.
+  static void InitPixelLanes(detail::ChunkState& chunk, const PixelTargets& targets,
+                             std::array<PixelLane, kWaveLanes>& lanes);
   static std::uint64_t SetUpPixelWave(detail::ChunkState& chunk, std::span<const raster::QuadFragment> quads,
                                       std::span<const std::uint32_t> waveQuads, const raster::RasterResult& result,
                                       const PixelTargets& targets, DispatchKind kind,

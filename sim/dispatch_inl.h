@@ -157,6 +157,7 @@ void Machine::RunPixelWaves(Dispatch& dispatch, DispatchReport report,
     }
     PackPixelWaves(quads, targets.flush, packed, chunk.lanes);
     std::array<PixelLane, kWaveLanes> lanes;
+    InitPixelLanes(chunk, targets, lanes);
     for (std::size_t wave = 0; wave < packed.WaveCount(); ++wave) {
       const std::span<const std::uint32_t> waveQuads(packed.quads.data() + packed.waveStarts[wave],
                                                      packed.waveStarts[wave + 1] - packed.waveStarts[wave]);

@@ -37,8 +37,8 @@ class TileHeatMap {
   // Add for a caller that alone adds to (x, y)'s tile during this dispatch: a pixel wave's bin
   // (32 px, whole 8x8 tiles) is one chunk on one host thread, so its lanes' tiles need no atomic
   // (ThreadSanitizer's every-pass test checks the claim).
-  void AddOwned(int x, int y, LaneKind kind) {
-    if (std::uint32_t* count = Count(x, y, kind)) ++*count;
+  void AddOwned(int x, int y, LaneKind kind, std::uint32_t lanes = 1) {
+    if (std::uint32_t* count = Count(x, y, kind)) *count += lanes;
   }
 
   std::uint32_t Active(int tx, int ty) const { return active_[Index(tx, ty)]; }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -225,38 +226,59 @@ void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8
   }
 }
 
+void Machine::InitPixelLanes(detail::ChunkState& chunk, const PixelTargets& targets,
+                             std::array<PixelLane, kWaveLanes>& lanes) {
+  for (std::size_t i = 0; i < lanes.size(); ++i) {
+    PixelLane& lane = lanes[i];
+    lane.lane = static_cast<int>(i);
+    lane.chunk = &chunk;
+    lane.quadPixel = static_cast<int>(i) % raster::kQuadPixels;
+    lane.quadInWave = static_cast<int>(i) / raster::kQuadPixels;
+    lane.pattern = targets.pattern;
+    lane.quadLanes = &lanes[i - static_cast<std::size_t>(lane.quadPixel)];
+  }
+}
+
 std::uint64_t Machine::SetUpPixelWave(detail::ChunkState& chunk, std::span<const raster::QuadFragment> quads,
                                       std::span<const std::uint32_t> waveQuads, const raster::RasterResult& result,
                                       const PixelTargets& targets, DispatchKind kind,
                                       std::array<PixelLane, kWaveLanes>& lanes) {
   // Every lane's kind and the wave's EXEC mask exist before any lane runs, so a kernel reading a
   // quad neighbour's helper flag or the mask sees the final value, as on the hardware where EXEC
-  // is set before the shader starts (hw-facts §6.1).
+  // is set before the shader starts (hw-facts §6.1). A quad's kinds come from its coverage as
+  // 4-bit masks (ClassifyQuadPixel's rule for all four pixels at once).
+  static_assert(raster::kBinSize % kTileSize == 0, "a bin holds whole heat-map tiles");
   std::uint64_t exec = 0;
   int active = 0;
   for (std::size_t k = 0; k < waveQuads.size(); ++k) {
     const raster::QuadFragment& quad = quads[waveQuads[k]];
+    const unsigned passed = quad.passed.LivePixels();
+    const unsigned dead = kind == DispatchKind::FullScreen ? quad.covered.LivePixels() & ~passed & 0xFu : 0u;
+    const unsigned helper = ~passed & ~dead & 0xFu;
+    const auto count = [](unsigned mask) { return static_cast<std::uint32_t>(std::popcount(mask)); };
+    chunk.lanes.lanesActive += count(passed);
+    chunk.lanes.lanesHelper += count(helper);
+    chunk.lanes.lanesDeadStencil += count(dead);
+    active += static_cast<int>(count(passed));
+    // A quad lies in one 8x8 tile; its pixels past the map's edge are not counted there.
+    if (quad.x + 1 < targets.width && quad.y + 1 < targets.height) {
+      if (passed != 0) chunk.heat->AddOwned(quad.x, quad.y, LaneKind::Active, count(passed));
+      if (helper != 0) chunk.heat->AddOwned(quad.x, quad.y, LaneKind::Helper, count(helper));
+      if (dead != 0) chunk.heat->AddOwned(quad.x, quad.y, LaneKind::DeadStencil, count(dead));
+    } else {
+      for (int p = 0; p < raster::kQuadPixels; ++p) {
+        chunk.heat->AddOwned(quad.x + (p & 1), quad.y + (p >> 1), ClassifyQuadPixel(quad, p, kind));
+      }
+    }
+    exec |= std::uint64_t{passed | helper} << (k * raster::kQuadPixels);
+    const raster::TriangleSetup* triangle = kind == DispatchKind::Draw ? &result.triangles[quad.setupIndex] : nullptr;
     for (int p = 0; p < raster::kQuadPixels; ++p) {
-      const int laneIndex = static_cast<int>(k) * raster::kQuadPixels + p;
-      const LaneKind laneKind = ClassifyQuadPixel(quad, p, kind);
-      chunk.lanes.CountLane(laneKind);
-      static_assert(raster::kBinSize % kTileSize == 0, "a bin holds whole heat-map tiles");
-      chunk.heat->AddOwned(quad.x + (p & 1), quad.y + (p >> 1), laneKind);
-      const bool runs = laneKind == LaneKind::Active || laneKind == LaneKind::Helper;
-      exec |= static_cast<std::uint64_t>(runs) << laneIndex;
-      active += laneKind == LaneKind::Active;
-      PixelLane& lane = lanes[static_cast<std::size_t>(laneIndex)];
-      lane.lane = laneIndex;
-      lane.helper = laneKind == LaneKind::Helper;
-      lane.chunk = &chunk;
+      PixelLane& lane = lanes[k * raster::kQuadPixels + static_cast<std::size_t>(p)];
+      lane.helper = (helper >> p & 1u) != 0;
       lane.x = quad.x + (p & 1);
       lane.y = quad.y + (p >> 1);
-      lane.quadPixel = p;
-      lane.quadInWave = static_cast<int>(k);
       lane.quad = &quad;
-      lane.triangle = kind == DispatchKind::Draw ? &result.triangles[quad.setupIndex] : nullptr;
-      lane.pattern = targets.pattern;
-      lane.quadLanes = &lanes[k * raster::kQuadPixels];
+      lane.triangle = triangle;
     }
   }
   for (std::size_t i = 0; i < waveQuads.size() * raster::kQuadPixels; ++i) lanes[i].exec = exec;

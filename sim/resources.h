@@ -5,6 +5,7 @@
 // reported both as lane requests and as distinct lines (sim/counters.h ResourceTraffic).
 // Host access (At, Fill) is not counted: only views (sim/views.h) count.
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstring>
@@ -158,6 +159,10 @@ class Texture2D : public Resource {
         std::array<std::uint8_t, 4> texel{};
         EncodeCodes(*format_, value, texel.data(), codeChannels_);
         const std::size_t stride = CodeStride();
+        if (std::all_of(texel.begin(), texel.begin() + codeChannels_, [&](std::uint8_t b) { return b == texel[0]; })) {
+          std::memset(codes_.data(), texel[0], codes_.size());  // a clear: every byte the same
+          return;
+        }
         for (std::size_t at = 0; at < codes_.size(); at += stride) std::memcpy(codes_.data() + at, texel.data(), stride);
         return;
       }
