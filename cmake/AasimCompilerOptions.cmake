@@ -55,21 +55,6 @@ if(AASIM_FUZZ)
   target_compile_definitions(aasim_opt INTERFACE AASIM_DCHECKS)
 endif()
 
-# A target whose property AASIM_UNOPTIMISED is set compiles at -O0 in every build: the option
-# comes after the build type's and the sanitizers' levels, so it wins (tests/CMakeLists.txt).
-target_compile_options(aasim_opt INTERFACE $<$<BOOL:$<TARGET_PROPERTY:AASIM_UNOPTIMISED>>:-O0>)
-
 # Every aasim library and executable links this one target.
 add_library(aasim_policy INTERFACE)
 target_link_libraries(aasim_policy INTERFACE aasim_warnings aasim_opt)
-
-# Build time (docs/PERFORMANCE.md, "CI time: precompiled headers"): GoogleTest, nlohmann-json,
-# CLI11, oneTBB and the machine's own headers take 1.5-3 s each to parse, and the test and
-# command-line targets parse them in every file. A target's precompiled header is valid only for
-# its own flags, so files built at another -O level sit in targets of their own (tests/).
-option(AASIM_PRECOMPILED_HEADERS "Precompile the heaviest headers of the largest targets" ON)
-function(aasim_precompile_headers target)
-  if(AASIM_PRECOMPILED_HEADERS)
-    target_precompile_headers(${target} PRIVATE ${ARGN})
-  endif()
-endfunction()
