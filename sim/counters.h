@@ -37,7 +37,6 @@ struct LaneCounters {
   std::array<std::uint64_t, kQuadsPerWave + 1> wavesByPrimitives{};
 
   void Merge(const LaneCounters& other);
-  void CountLane(LaneKind kind);
   friend bool operator==(const LaneCounters&, const LaneCounters&) = default;
 };
 
@@ -95,15 +94,6 @@ inline void LaneCounters::Merge(const LaneCounters& other) {
   AddHistogram(wavesByActiveLanes, other.wavesByActiveLanes);
   AddHistogram(quadsByLivePixels, other.quadsByLivePixels);
   AddHistogram(wavesByPrimitives, other.wavesByPrimitives);
-}
-
-inline void LaneCounters::CountLane(LaneKind kind) {
-  switch (kind) {
-    case LaneKind::Active: ++lanesActive; break;
-    case LaneKind::Helper: ++lanesHelper; break;
-    case LaneKind::DeadStencil: ++lanesDeadStencil; break;
-    case LaneKind::DeadEmpty: ++lanesDeadEmpty; break;
-  }
 }
 
 // A counter a pass declares for its own dispatch ("smaa/search_steps"), counted by its kernels
