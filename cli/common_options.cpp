@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <CLI/CLI.hpp>
 #include <oneapi/tbb/info.h>
 
 #include "raster/limits.h"

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/common_options.h"
 #include "cli/output_dir.h"
 #include "cli/output_error.h"

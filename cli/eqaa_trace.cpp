@@ -89,9 +89,12 @@ std::string FormatFloat(float value) {
   return text;
 }
 
+// Appended piecewise: GCC 12 flags `"literal" + std::string` with a false -Wrestrict.
 std::string ColourText(const fmask::Colour& c) {
-  return "(" + FormatFloat(c.r) + ", " + FormatFloat(c.g) + ", " + FormatFloat(c.b) + ", " +
-         FormatFloat(c.a) + ")";
+  std::string text = "(";
+  text.append(FormatFloat(c.r)).append(", ").append(FormatFloat(c.g)).append(", ");
+  text.append(FormatFloat(c.b)).append(", ").append(FormatFloat(c.a)).append(")");
+  return text;
 }
 
 std::string PrimitiveText(std::uint32_t primitiveId) {
@@ -100,7 +103,7 @@ std::string PrimitiveText(std::uint32_t primitiveId) {
 
 std::string SamplesText(raster::SampleMask mask) {
   std::string text;
-  for (const int s : SampleList(mask)) text += (text.empty() ? "" : ",") + std::to_string(s);
+  for (const int s : SampleList(mask)) text.append(text.empty() ? "" : ",").append(std::to_string(s));
   return text.empty() ? "-" : text;
 }
 

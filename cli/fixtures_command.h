@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <CLI/CLI.hpp>
+#include "cli/cli11_fwd.h"
 
 namespace cli {
 

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include <CLI/CLI.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 

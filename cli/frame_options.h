@@ -9,8 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "cli/cli11_fwd.h"
 #include "fmask/eqaa_surface.h"
 #include "passes/registry.h"
 #include "sim/draw_order.h"

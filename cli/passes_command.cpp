@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
 #include "passes/registry.h"
 #include "passes/resolve.h"
 

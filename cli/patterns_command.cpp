@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/common_options.h"
 #include "cli/number_format.h"
 #include "cli/output_dir.h"

@@ -7,8 +7,7 @@
 #include <ostream>
 #include <string>
 
-#include <CLI/CLI.hpp>
-
+#include "cli/cli11_fwd.h"
 #include "raster/pattern_optimiser.h"
 
 namespace cli {

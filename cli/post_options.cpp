@@ -2,6 +2,7 @@
 
 #include "cli/post_options.h"
 
+#include <CLI/CLI.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/common_options.h"
 #include "raster/limits.h"
 #include "raster/rasterizer.h"

@@ -8,8 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "cli/cli11_fwd.h"
 #include "fmask/eqaa_surface.h"
 #include "raster/depth_stencil.h"
 #include "raster/setup.h"

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 
+#include <CLI/CLI.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 

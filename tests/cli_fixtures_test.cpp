@@ -4,17 +4,14 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -23,44 +20,42 @@
 #include "cli/fixtures_command.h"
 #include "cli/output_dir.h"
 #include "fmask/fixtures.h"
+#include "cli_test_util.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-using Bytes = std::vector<std::uint8_t>;
+using cli::testing::CommandResult;
+using cli::testing::ReadText;
+using FileBytes = std::vector<std::uint8_t>;
 
-struct CommandResult {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
-
-Bytes ReadFile(const fs::path& path) {
+FileBytes ReadFileBytes(const fs::path& path) {
   std::ifstream file(path, std::ios::binary);
-  return Bytes(std::istreambuf_iterator<char>(file), {});
+  return FileBytes(std::istreambuf_iterator<char>(file), {});
 }
 
-std::string ReadText(const fs::path& path) {
-  const Bytes bytes = ReadFile(path);
-  return std::string(bytes.begin(), bytes.end());
-}
-
-void WriteFile(const fs::path& path, const Bytes& bytes) {
+void WriteFileBytes(const fs::path& path, const FileBytes& bytes) {
   std::ofstream(path, std::ios::binary)
       .write(reinterpret_cast<const char*>(bytes.data()),
              static_cast<std::streamsize>(bytes.size()));
 }
 
-// Appended piecewise: GCC 12 flags `" " + string` with a false -Wrestrict.
-void AppendQuoted(std::string& command, std::string_view prefix, const std::string& arg) {
-  command += prefix;
-  command += '\'';
-  command += arg;
-  command += '\'';
-}
-
+// `aasim fixtures --out` runs once per process: each test corrupts a copy of that set.
 class CliFixtures : public ::testing::Test {
  protected:
+  static void SetUpTestSuite() {
+    pristine_ = new fs::path(fs::temp_directory_path() /
+                             ("aasim-cli-fixtures-" + std::to_string(::getpid()) + "-pristine"));
+    fs::remove_all(*pristine_);
+    fs::create_directories(*pristine_);
+    written_ = new CommandResult(cli::testing::RunAasim({"fixtures", "--out", (*pristine_ / "set").string()}, *pristine_));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*pristine_);
+    delete pristine_;
+    delete written_;
+  }
+
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = fs::temp_directory_path() /
@@ -71,24 +66,18 @@ class CliFixtures : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   CommandResult Run(const std::vector<std::string>& args) const {
-    std::string command;
-    AppendQuoted(command, "", AASIM_BINARY);
-    for (const std::string& arg : args) AppendQuoted(command, " ", arg);
-    AppendQuoted(command, " >", (dir_ / "stdout.txt").string());
-    AppendQuoted(command, " 2>", (dir_ / "stderr.txt").string());
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadText(dir_ / "stdout.txt"),
-            ReadText(dir_ / "stderr.txt")};
+    return cli::testing::RunAasim(args, dir_);
   }
 
+  // This test's own copy of the set `aasim fixtures` wrote.
   fs::path WriteSet() const {
-    const fs::path set = dir_ / "set";
-    const CommandResult result = Run({"fixtures", "--out", set.string()});
-    EXPECT_EQ(result.exitCode, 0) << result.err;
-    EXPECT_NE(result.out.find("wrote " + std::to_string(fmask::CanonicalFixtureSet().size()) +
-                              " fixtures"),
+    EXPECT_EQ(written_->exitCode, 0) << written_->err;
+    EXPECT_NE(written_->out.find("wrote " + std::to_string(fmask::CanonicalFixtureSet().size()) +
+                                 " fixtures"),
               std::string::npos)
-        << result.out;
+        << written_->out;
+    const fs::path set = dir_ / "set";
+    fs::copy(*pristine_ / "set", set, fs::copy_options::recursive);
     return set;
   }
 
@@ -105,7 +94,11 @@ class CliFixtures : public ::testing::Test {
   }
 
   fs::path dir_;
+  static fs::path* pristine_;
+  static CommandResult* written_;
 };
+fs::path* CliFixtures::pristine_ = nullptr;
+CommandResult* CliFixtures::written_ = nullptr;
 
 TEST_F(CliFixtures, WrittenSetVerifies) {
   const fs::path set = WriteSet();
@@ -120,7 +113,7 @@ TEST_F(CliFixtures, WrittenSetVerifies) {
   }
 }
 
-std::uint64_t Fnv1a64(const Bytes& bytes) {
+std::uint64_t Fnv1a64(const FileBytes& bytes) {
   std::uint64_t hash = 0xcbf29ce484222325ull;
   for (std::uint8_t byte : bytes) hash = (hash ^ byte) * 0x100000001b3ull;
   return hash;
@@ -136,7 +129,7 @@ TEST_F(CliFixtures, ManifestAloneDecodesEveryFixture) {
     const std::string name = fixture["name"];
     SCOPED_TRACE(name);
     for (const nlohmann::json& file : fixture["files"]) {
-      const Bytes bytes = ReadFile(set / name / file["name"].get<std::string>());
+      const FileBytes bytes = ReadFileBytes(set / name / file["name"].get<std::string>());
       char hex[17];
       std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(Fnv1a64(bytes)));
       EXPECT_EQ(bytes.size(), file["bytes"].get<std::size_t>());
@@ -146,9 +139,9 @@ TEST_F(CliFixtures, ManifestAloneDecodesEveryFixture) {
     const int bits = fixture["fmask"]["bits_per_sample"],
               elementBytes = fixture["fmask"]["element_bytes"];
     const nlohmann::json unknownCode = fixture["fmask"]["unknown_code"];
-    const Bytes fmask = ReadFile(set / name / "fmask.bin"),
-                colours = ReadFile(set / name / "colours.bin");
-    const Bytes decoded = ReadFile(set / name / "decoded.bin");
+    const FileBytes fmask = ReadFileBytes(set / name / "fmask.bin"),
+                colours = ReadFileBytes(set / name / "colours.bin");
+    const FileBytes decoded = ReadFileBytes(set / name / "decoded.bin");
     const int pixels = fixture["width"].get<int>() * fixture["height"].get<int>();
     for (int pixel = 0; pixel < pixels; ++pixel) {
       std::uint64_t element = 0;
@@ -171,18 +164,18 @@ TEST_F(CliFixtures, ManifestAloneDecodesEveryFixture) {
 TEST_F(CliFixtures, FlippedByteFailsNamingFixtureAndFile) {
   const fs::path set = WriteSet();
   const fs::path file = set / "8S4Z2F-standard-t-junction" / "fmask.bin";
-  Bytes bytes = ReadFile(file);
+  FileBytes bytes = ReadFileBytes(file);
   bytes[17] ^= 0x01;
-  WriteFile(file, bytes);
+  WriteFileBytes(file, bytes);
   ExpectVerifyFails(set, {"fixture 8S4Z2F-standard-t-junction", "fmask.bin", "byte 17"});
 }
 
 TEST_F(CliFixtures, FlippedPreviewByteFails) {
   const fs::path set = WriteSet();
   const fs::path file = set / "16S8Z8F-eqaa-five-way-vertex" / "preview.png";
-  Bytes bytes = ReadFile(file);
+  FileBytes bytes = ReadFileBytes(file);
   bytes[bytes.size() / 2] ^= 0x40;
-  WriteFile(file, bytes);
+  WriteFileBytes(file, bytes);
   ExpectVerifyFails(set, {"fixture 16S8Z8F-eqaa-five-way-vertex", "preview.png"});
 }
 

@@ -350,7 +350,7 @@ TEST_F(CliFrameTest, HelpExplainsEveryOption) {
 // --- Every bad input: exit code, one stderr line naming the input, no output directory. ---
 
 
-std::vector<BadInput> BadInputs() {
+std::vector<BadInput> FrameBadInputs() {
   const auto fixed = [](std::vector<std::string> args) {
     return [args](const fs::path&) { return args; };
   };
@@ -393,7 +393,7 @@ TEST_P(CliFrameBadInputTest, FailsWithOneLineNamingTheInputAndCreatesNothing) {
   EXPECT_FALSE(fs::exists(out)) << run.err;
 }
 
-INSTANTIATE_TEST_SUITE_P(CliFrame, CliFrameBadInputTest, ::testing::ValuesIn(BadInputs()),
+INSTANTIATE_TEST_SUITE_P(CliFrame, CliFrameBadInputTest, ::testing::ValuesIn(FrameBadInputs()),
                          [](const auto& param) { return param.param.name; });
 
 TEST_F(CliFrameTest, MissingOutIsRefused) {

@@ -48,14 +48,14 @@ class CliImageIoTest : public ::testing::Test {
   fs::path dir_;
 };
 
-std::vector<std::uint8_t> Bytes(std::size_t count) {
+std::vector<std::uint8_t> PatternBytes(std::size_t count) {
   std::vector<std::uint8_t> bytes(count);
   for (std::size_t i = 0; i < count; ++i) bytes[i] = static_cast<std::uint8_t>(i * 37 + 11);
   return bytes;
 }
 
 void ExpectPngRoundTrip(const fs::path& path, int width, int height, int channels) {
-  const std::vector<std::uint8_t> written = Bytes(std::size_t(width) * height * channels);
+  const std::vector<std::uint8_t> written = PatternBytes(std::size_t(width) * height * channels);
   cli::WritePng(path, width, height, channels, written);
   int readWidth = 0, readHeight = 0, readChannels = 0;
   stbi_uc* read = stbi_load(path.c_str(), &readWidth, &readHeight, &readChannels, 0);
@@ -72,7 +72,7 @@ TEST_F(CliImageIoTest, GreyPngReadsBackEqual) { ExpectPngRoundTrip(dir_ / "grey.
 TEST_F(CliImageIoTest, RgbPngReadsBackEqual) { ExpectPngRoundTrip(dir_ / "rgb.png", 5, 9, 3); }
 
 TEST_F(CliImageIoTest, PngWithWrongBufferSizeIsRefused) {
-  EXPECT_THROW(cli::WritePng(dir_ / "bad.png", 4, 4, 1, Bytes(15)), std::invalid_argument);
+  EXPECT_THROW(cli::WritePng(dir_ / "bad.png", 4, 4, 1, PatternBytes(15)), std::invalid_argument);
 }
 
 TEST_F(CliImageIoTest, ExrChannelsReadBackEqualWithZipCompression) {
@@ -134,7 +134,7 @@ TEST(CliImageIo, SrgbEncodingMatchesTheTransferFunction) {
 
 TEST_F(CliImageIoTest, CommitMovesStagedFilesIntoPlaceAndLeavesNoTemporaries) {
   cli::OutputDir out(dir_ / "set");
-  cli::WritePng(out.Stage("a.png"), 2, 2, 1, Bytes(4));
+  cli::WritePng(out.Stage("a.png"), 2, 2, 1, PatternBytes(4));
   std::ofstream(out.Stage("b.json")) << "{}\n";
   const std::vector<fs::path> written = out.Commit();
   EXPECT_EQ(written, (std::vector<fs::path>{dir_ / "set" / "a.png", dir_ / "set" / "b.json"}));
@@ -147,7 +147,7 @@ TEST_F(CliImageIoTest, FailureMidwayLeavesNoFiles) {
   const fs::path setDir = dir_ / "set";
   try {
     cli::OutputDir out(setDir);
-    cli::WritePng(out.Stage("coverage.png"), 2, 2, 1, Bytes(4));
+    cli::WritePng(out.Stage("coverage.png"), 2, 2, 1, PatternBytes(4));
     const std::vector<float> values(4, 0.0f);
     const std::vector<cli::ExrChannel> channels{{"Z", values}};
     cli::WriteExr(out.Stage("depth.exr"), 2, 3, channels);  // wrong size: throws

@@ -38,7 +38,7 @@ using cli::testing::ReadText;
 using cli::testing::RunAasim;
 using cli::testing::WriteFile;
 
-constexpr int kWidth = 24, kHeight = 16;
+constexpr int kPostWidth = 24, kPostHeight = 16;
 
 struct Png {
   int width = 0, height = 0, channels = 0;
@@ -48,10 +48,10 @@ struct Png {
 // Every code 0..255 appears in every channel; a bright square on a dark ground gives the demo
 // edges.
 Png TestPng(int channels) {
-  Png png{kWidth, kHeight, channels, {}};
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      const int i = y * kWidth + x;
+  Png png{kPostWidth, kPostHeight, channels, {}};
+  for (int y = 0; y < kPostHeight; ++y) {
+    for (int x = 0; x < kPostWidth; ++x) {
+      const int i = y * kPostWidth + x;
       const bool square = x >= 8 && x < 16 && y >= 4 && y < 12;
       png.pixels.push_back(static_cast<std::uint8_t>(square ? 200 + i % 56 : i % 256));
       png.pixels.push_back(static_cast<std::uint8_t>(255 - i % 256));
@@ -80,7 +80,7 @@ using Planes = std::map<std::string, std::vector<float>>;
 
 // Linear colour with values above 1 and below the 8-bit sRGB step, so nothing but a float path
 // keeps them.
-Planes TestPlanes(int width = kWidth, int height = kHeight) {
+Planes TestPlanes(int width = kPostWidth, int height = kPostHeight) {
   Planes planes;
   for (const char* name : {"R", "G", "B"}) planes[name].resize(std::size_t(width) * std::size_t(height));
   for (std::size_t i = 0; i < planes["R"].size(); ++i) {
@@ -91,7 +91,7 @@ Planes TestPlanes(int width = kWidth, int height = kHeight) {
   return planes;
 }
 
-fs::path WriteExr(const fs::path& path, const Planes& planes, int width = kWidth, int height = kHeight) {
+fs::path WriteExr(const fs::path& path, const Planes& planes, int width = kPostWidth, int height = kPostHeight) {
   std::vector<cli::ExrChannel> channels;
   for (const auto& [name, values] : planes) channels.push_back({name, values});
   cli::WriteExr(path, width, height, channels);
@@ -128,7 +128,7 @@ TEST_F(CliPostTest, CopyGivesBackAnRgbPngByteForByte) {
   EXPECT_EQ(report["schema"], "aasim.post");
   EXPECT_EQ(report["input"]["format"], "png");
   EXPECT_EQ(report["input"]["alpha"], false);
-  EXPECT_EQ(report["work_items"], kWidth * kHeight);
+  EXPECT_EQ(report["work_items"], kPostWidth * kPostHeight);
   EXPECT_EQ(report["layers"].size(), 0u);
 }
 
@@ -165,7 +165,7 @@ TEST_F(CliPostTest, DemoWritesItsLayersAndComparesTheStrategies) {
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const Png edges = ReadPng(out / "edges.png");
   EXPECT_EQ(edges.channels, 1);
-  EXPECT_EQ(edges.width, kWidth);
+  EXPECT_EQ(edges.width, kPostWidth);
   EXPECT_EQ(ExrChannelNames(out / "edges.exr"), std::vector<std::string>{"Y"});
   const std::vector<float> mask = ReadExrChannels(out / "edges.exr").at("Y");
   for (std::size_t i = 0; i < mask.size(); ++i) EXPECT_EQ(edges.pixels[i], mask[i] == 1.0f ? 255 : 0) << i;
@@ -215,7 +215,7 @@ TEST_F(CliPostTest, CountersDoNotDependOnTheThreadCount) {
 
 TEST_F(CliPostTest, DepthIsReadFromTheFirstOfZYR) {
   const fs::path input = Write(scratch_ / "in.png", TestPng(3));
-  Planes depth{{"Y", std::vector<float>(kWidth * kHeight, 0.5f)}, {"R", std::vector<float>(kWidth * kHeight, 0.25f)}};
+  Planes depth{{"Y", std::vector<float>(kPostWidth * kPostHeight, 0.5f)}, {"R", std::vector<float>(kPostWidth * kPostHeight, 0.25f)}};
   const fs::path out = scratch_ / "out";
   const CommandResult run =
       RunAasim(Post("copy", input, out, {"--depth", WriteExr(scratch_ / "d.exr", depth).string()}), scratch_);
@@ -309,7 +309,7 @@ Args Options(std::vector<std::string> options) {
   };
 }
 
-std::vector<BadInput> BadInputs() {
+std::vector<BadInput> PostBadInputs() {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   return {
       {"MissingFile", Input([](const fs::path& s) { return (s / "nosuch.png").string(); }), "nosuch.png",
@@ -327,7 +327,7 @@ std::vector<BadInput> BadInputs() {
        "big.png", "exceeds 16384 texels on a side", 1},
       {"PngOverTheMemoryLimit", Input([](const fs::path& s) { return PatchedPng(s / "big.png", 8000, 8000); }),
        "big.png", "over the 4.0 GiB limit", 1},
-      {"SixteenBitPng", Input([](const fs::path& s) { return PatchedPng(s / "w.png", kWidth, kHeight, 16); }),
+      {"SixteenBitPng", Input([](const fs::path& s) { return PatchedPng(s / "w.png", kPostWidth, kPostHeight, 16); }),
        "w.png", "16 bits per channel", 1},
       {"ExrWithoutBlue",
        Input([](const fs::path& s) {
@@ -356,7 +356,7 @@ std::vector<BadInput> BadInputs() {
       {"ExrNotFinite",
        Input([nan](const fs::path& s) {
          Planes planes = TestPlanes();
-         planes["G"][kWidth * 2 + 3] = nan;
+         planes["G"][kPostWidth * 2 + 3] = nan;
          return WriteExr(s / "nan.exr", planes).string();
        }),
        "nan.exr", "channel G of pixel (3, 2) is nan", 1},
@@ -365,12 +365,12 @@ std::vector<BadInput> BadInputs() {
        "d.exr", "depth is 8x4, the image", 1},
       {"DepthWithoutADepthChannel",
        Depth([](const fs::path& s) {
-         return WriteExr(s / "d.exr", {{"depth", std::vector<float>(kWidth * kHeight)}}).string();
+         return WriteExr(s / "d.exr", {{"depth", std::vector<float>(kPostWidth * kPostHeight)}}).string();
        }),
        "d.exr", "channels depth; depth is read from a channel named Z, Y or R", 1},
       {"DepthNotFinite",
        Depth([](const fs::path& s) {
-         std::vector<float> z(kWidth * kHeight, 0.5f);
+         std::vector<float> z(kPostWidth * kPostHeight, 0.5f);
          z[5] = std::numeric_limits<float>::infinity();
          return WriteExr(s / "d.exr", {{"Z", z}}).string();
        }),
@@ -395,7 +395,7 @@ std::vector<BadInput> BadInputs() {
 class CliPostBadInputTest : public cli::testing::ScratchDirTest, public ::testing::WithParamInterface<BadInput> {};
 
 // Every file under `dir` (hidden ones included) with its bytes.
-std::map<std::string, std::string> Snapshot(const fs::path& dir) {
+std::map<std::string, std::string> PostSnapshot(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
     files[fs::relative(entry.path(), dir).string()] = entry.is_regular_file() ? ReadText(entry.path()) : "";
@@ -407,7 +407,7 @@ TEST_P(CliPostBadInputTest, FailsWithOneLineNamingTheInputAndKeepsThePreviousRes
   const fs::path out = scratch_ / "out";
   const fs::path good = Write(scratch_ / "good.png", TestPng(3));
   ASSERT_EQ(RunAasim(Post("demo", good, out), scratch_).exitCode, 0);
-  const std::map<std::string, std::string> before = Snapshot(out);
+  const std::map<std::string, std::string> before = PostSnapshot(out);
 
   const BadInput& input = GetParam();
   std::vector<std::string> args{"post", "--pass", "demo", "--out", out.string()};
@@ -420,10 +420,10 @@ TEST_P(CliPostBadInputTest, FailsWithOneLineNamingTheInputAndKeepsThePreviousRes
   EXPECT_NE(run.err.find(input.named), std::string::npos) << run.err;
   EXPECT_NE(run.err.find(input.reason), std::string::npos) << run.err;
   EXPECT_EQ(run.err.rfind(input.exitCode == 2 ? "aasim post: " : "aasim: ", 0), 0u) << run.err;
-  EXPECT_TRUE(Snapshot(out) == before) << run.err;
+  EXPECT_TRUE(PostSnapshot(out) == before) << run.err;
 }
 
-INSTANTIATE_TEST_SUITE_P(CliPost, CliPostBadInputTest, ::testing::ValuesIn(BadInputs()),
+INSTANTIATE_TEST_SUITE_P(CliPost, CliPostBadInputTest, ::testing::ValuesIn(PostBadInputs()),
                          [](const auto& param) { return param.param.name; });
 
 TEST_F(CliPostTest, ABadImageIntoANewDirectoryCreatesNothing) {
@@ -476,10 +476,10 @@ TEST(CliPostInputs, APassReadingVelocitiesNeedsTheVelocityOption) {
 Png ShiftedPng(int shift) {
   const Png base = TestPng(3);
   Png png = base;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      const int from = (y * kWidth + (x - shift + kWidth) % kWidth) * 3;
-      for (int c = 0; c < 3; ++c) png.pixels[std::size_t((y * kWidth + x) * 3 + c)] = base.pixels[std::size_t(from + c)];
+  for (int y = 0; y < kPostHeight; ++y) {
+    for (int x = 0; x < kPostWidth; ++x) {
+      const int from = (y * kPostWidth + (x - shift + kPostWidth) % kPostWidth) * 3;
+      for (int c = 0; c < 3; ++c) png.pixels[std::size_t((y * kPostWidth + x) * 3 + c)] = base.pixels[std::size_t(from + c)];
     }
   }
   return png;
@@ -487,8 +487,8 @@ Png ShiftedPng(int shift) {
 
 fs::path WriteVelocity(const fs::path& path, float vx) {
   Planes planes;
-  planes["R"].assign(std::size_t(kWidth) * kHeight, vx);
-  planes["G"].assign(std::size_t(kWidth) * kHeight, 0.0f);
+  planes["R"].assign(std::size_t(kPostWidth) * kPostHeight, vx);
+  planes["G"].assign(std::size_t(kPostWidth) * kPostHeight, 0.0f);
   return WriteExr(path, planes);
 }
 
@@ -530,8 +530,8 @@ TEST_F(CliPostTest, ASequenceRefusesMismatchedFilesWithOneLineAndNoOutput) {
   EXPECT_EQ(counts.exitCode, 2);
   EXPECT_NE(counts.err.find("--velocity: given 1 times for 2 --input images"), std::string::npos) << counts.err;
   Png small = TestPng(3);
-  small.width = kWidth / 2;
-  small.pixels.resize(std::size_t(small.width) * kHeight * 3);
+  small.width = kPostWidth / 2;
+  small.pixels.resize(std::size_t(small.width) * kPostHeight * 3);
   const fs::path b = Write(scratch_ / "b.png", small);
   const CommandResult sizes =
       RunAasim({"post", "--pass", "copy", "--input", a.string(), "--input", b.string(), "--out", (scratch_ / "out").string()},
@@ -543,7 +543,7 @@ TEST_F(CliPostTest, ASequenceRefusesMismatchedFilesWithOneLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(scratch_ / "out"));
   // A velocity file without R and G (or X and Y) names its channels.
   Planes depthOnly;
-  depthOnly["Z"].assign(std::size_t(kWidth) * kHeight, 0.5f);
+  depthOnly["Z"].assign(std::size_t(kPostWidth) * kPostHeight, 0.5f);
   const fs::path z = WriteExr(scratch_ / "z.exr", depthOnly);
   const CommandResult channels = RunAasim({"post", "--pass", "copy", "--input", a.string(), "--input", a.string(),
                                            "--velocity", z.string(), "--velocity", z.string(), "--out",

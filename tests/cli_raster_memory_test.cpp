@@ -29,7 +29,7 @@ struct Size {
   int width, height, samples, depthSamples, fragments;
 };
 
-std::vector<std::string> Args(const Size& size, const fs::path& out) {
+std::vector<std::string> MemoryRunArgs(const Size& size, const fs::path& out) {
   std::vector<std::string> args{"raster", "--width", std::to_string(size.width), "--height", std::to_string(size.height),
                                 "--samples", std::to_string(size.samples), "--depth-samples",
                                 std::to_string(size.depthSamples), "--out", out.string()};
@@ -57,14 +57,14 @@ TEST_F(CliRasterMemory, TheEstimateCoversThePeakResidentSetAboveAOnePixelRun) {
   GTEST_SKIP() << "sanitizer shadow memory and quarantine inflate the resident set";
 #endif
   // The code, libraries and thread stacks every run has, whatever its size.
-  const std::uint64_t baseline = PeakResidentBytes(Args({1, 1, 1, 1, 0}, scratch_ / "base"), scratch_);
+  const std::uint64_t baseline = PeakResidentBytes(MemoryRunArgs({1, 1, 1, 1, 0}, scratch_ / "base"), scratch_);
   const Size sizes[] = {
       {16384, 16, 16, 8, 0},  // the estimate was 28.5 MiB; the run peaks ~110 MiB above the baseline
       {16384, 64, 16, 8, 4},
       {1024, 1024, 8, 4, 2},
   };
   for (const Size& size : sizes) {
-    const std::vector<std::string> args = Args(size, scratch_ / "out");
+    const std::vector<std::string> args = MemoryRunArgs(size, scratch_ / "out");
     std::string text;
     for (const std::string& arg : args) text += arg + " ";
     SCOPED_TRACE(text);

@@ -61,14 +61,14 @@ const std::vector<float> kTrianglePositions{
 
 class CliRasterTest : public cli::testing::ScratchDirTest {};
 
-std::vector<std::string> SmallRun(const fs::path& out) {
+std::vector<std::string> SmallRasterRun(const fs::path& out) {
   return {"raster",    "--scene", "builtin:default", "--width",   "64", "--height", "48",
           "--samples", "4",       "--out",           out.string()};
 }
 
 TEST_F(CliRasterTest, WritesTheFiveOutputsAndCountersMatchTheFieldTable) {
   const fs::path out = scratch_ / "out";
-  const CommandResult run = RunAasim(SmallRun(out), scratch_);
+  const CommandResult run = RunAasim(SmallRasterRun(out), scratch_);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(run.err, "");
   EXPECT_NE(run.out.find("builtin:default"), std::string::npos) << run.out;
@@ -107,7 +107,7 @@ TEST_F(CliRasterTest, WritesTheFiveOutputsAndCountersMatchTheFieldTable) {
 }
 
 TEST_F(CliRasterTest, OutputsAreIdenticalWithOneAndTwoThreads) {
-  std::vector<std::string> one = SmallRun(scratch_ / "one"), two = SmallRun(scratch_ / "two");
+  std::vector<std::string> one = SmallRasterRun(scratch_ / "one"), two = SmallRasterRun(scratch_ / "two");
   one.insert(one.end(), {"--threads", "1"});
   two.insert(two.end(), {"--threads", "2"});
   ASSERT_EQ(RunAasim(one, scratch_).exitCode, 0);
@@ -419,7 +419,7 @@ TEST_F(CliRasterTest, EqaaOutputsAreIdenticalWithOneAndTwoThreads) {
 
 // Names the case in test listings instead of gtest's byte dump.
 
-std::vector<BadInput> BadInputs() {
+std::vector<BadInput> RasterBadInputs() {
   const auto fixed = [](std::vector<std::string> args) {
     return [args](const fs::path&) { return args; };
   };
@@ -502,7 +502,7 @@ TEST_P(CliRasterBadInputTest, FailsWithOneLineNamingTheInputAndWritesNothing) {
   EXPECT_EQ(FilesIn(out), std::vector<std::string>{}) << run.err;
 }
 
-INSTANTIATE_TEST_SUITE_P(Inputs, CliRasterBadInputTest, ::testing::ValuesIn(BadInputs()),
+INSTANTIATE_TEST_SUITE_P(Inputs, CliRasterBadInputTest, ::testing::ValuesIn(RasterBadInputs()),
                          [](const auto& param) { return param.param.name; });
 
 // --- Sample ownership replay (cli/ownership.h). ---

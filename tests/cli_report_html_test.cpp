@@ -14,16 +14,16 @@
 namespace cli {
 namespace {
 
-std::vector<std::uint8_t> Bytes(const std::string& text) { return {text.begin(), text.end()}; }
+std::vector<std::uint8_t> TextBytes(const std::string& text) { return {text.begin(), text.end()}; }
 
 TEST(CliReportHtml, Base64MatchesRfc4648Vectors) {
-  EXPECT_EQ(Base64(Bytes("")), "");
-  EXPECT_EQ(Base64(Bytes("f")), "Zg==");
-  EXPECT_EQ(Base64(Bytes("fo")), "Zm8=");
-  EXPECT_EQ(Base64(Bytes("foo")), "Zm9v");
-  EXPECT_EQ(Base64(Bytes("foob")), "Zm9vYg==");
-  EXPECT_EQ(Base64(Bytes("fooba")), "Zm9vYmE=");
-  EXPECT_EQ(Base64(Bytes("foobar")), "Zm9vYmFy");
+  EXPECT_EQ(Base64(TextBytes("")), "");
+  EXPECT_EQ(Base64(TextBytes("f")), "Zg==");
+  EXPECT_EQ(Base64(TextBytes("fo")), "Zm8=");
+  EXPECT_EQ(Base64(TextBytes("foo")), "Zm9v");
+  EXPECT_EQ(Base64(TextBytes("foob")), "Zm9vYg==");
+  EXPECT_EQ(Base64(TextBytes("fooba")), "Zm9vYmE=");
+  EXPECT_EQ(Base64(TextBytes("foobar")), "Zm9vYmFy");
 }
 
 TEST(CliReportHtml, EscapesMarkup) {

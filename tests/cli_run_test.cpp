@@ -6,9 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include "passes/registry.h"
-#include "passes/resolve.h"
-
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -18,12 +15,15 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "browser_check.h"
 #include "cli/run_options.h"
 #include "cli/study_report.h"
 #include "cli_test_util.h"
+#include "passes/registry.h"
+#include "passes/resolve.h"
 
 namespace {
 
@@ -38,13 +38,13 @@ using cli::testing::RunAasim;
 using cli::testing::WriteFile;
 
 // The default --modes, by name.
-const std::vector<std::string> kModes = [] {
+const std::vector<std::string> kRunModes = [] {
   std::vector<std::string> names;
   for (const fmask::EqaaConfig& mode : cli::ParseEqaaModes(cli::kDefaultModes)) names.push_back(fmask::EqaaName(mode));
   return names;
 }();
 
-std::vector<std::string> SmallRun(const fs::path& scratch, const fs::path& out, const std::string& threads) {
+std::vector<std::string> SmallStudyRun(const fs::path& scratch, const fs::path& out, const std::string& threads) {
   return {"run",       "--quick", "--width",   "160",   "--height",         "96",
           "--gt-samples", "16",   "--threads", threads, "--cache",          (scratch / "cache").string(),
           "--progress", "never",  "--out",     out.string(), "--lut-configurations", "20000"};
@@ -74,7 +74,7 @@ class CliRunTest : public ::testing::Test {
     scratch_ = new fs::path(fs::temp_directory_path() / ("aasim_cli_run_" + std::to_string(::getpid())));
     fs::remove_all(*scratch_);
     fs::create_directories(*scratch_);
-    run_ = new CommandResult(RunAasim(SmallRun(*scratch_, Out(), "2"), *scratch_));
+    run_ = new CommandResult(RunAasim(SmallStudyRun(*scratch_, Out(), "2"), *scratch_));
   }
   static void TearDownTestSuite() {
     fs::remove_all(*scratch_);
@@ -140,8 +140,8 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
   EXPECT_EQ(report["schema"], cli::kReportSchema);
   EXPECT_EQ(report["version"], 1);
   EXPECT_EQ(report["configuration"]["width"], 160);
-  ASSERT_EQ(report["frames"].size(), std::size(kModes));
-  for (std::size_t i = 0; i < std::size(kModes); ++i) EXPECT_EQ(report["frames"][i]["mode"], kModes[i]);
+  ASSERT_EQ(report["frames"].size(), std::size(kRunModes));
+  for (std::size_t i = 0; i < std::size(kRunModes); ++i) EXPECT_EQ(report["frames"][i]["mode"], kRunModes[i]);
   // --post all: every registered pass the modes feed, in registry order, each under its strategies.
   const std::vector<std::string> passNames = PassesTheDefaultModesFeed();
   ASSERT_EQ(report["passes"].size(), passNames.size());
@@ -163,26 +163,26 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
   // then the passes' dispatches.
   std::size_t resolveDispatches = 0;
   for (const nlohmann::json& frame : report["frames"]) resolveDispatches += frame["resolves"].size();
-  ASSERT_EQ(dispatches.size(), 2 * std::size(kModes) + resolveDispatches + passDispatches);
+  ASSERT_EQ(dispatches.size(), 2 * std::size(kRunModes) + resolveDispatches + passDispatches);
   const std::string counters = ReadText(Out() / "counters.csv");
   EXPECT_EQ(counters.rfind("frame,name,kind,strategy,", 0), 0u) << counters.substr(0, 80);
   EXPECT_EQ(CountLines(counters), dispatches.size() + 1);
-  for (std::size_t i = 0; i < std::size(kModes); ++i) {
+  for (std::size_t i = 0; i < std::size(kRunModes); ++i) {
     const nlohmann::json& draw = dispatches[report["frames"][i]["draw_dispatch"].get<std::size_t>()];
     EXPECT_EQ(draw["name"], "frame/material");
-    EXPECT_EQ(draw["frame"], kModes[i]);
+    EXPECT_EQ(draw["frame"], kRunModes[i]);
   }
   const std::string quality = ReadText(Out() / "quality.csv");
   // Header, the modes, their resolves, the 1S frame as the passes' 8-bit sRGB target holds it, the
   // passes.
-  EXPECT_EQ(CountLines(quality), 1 + std::size(kModes) + resolveDispatches + 1 + passNames.size());
+  EXPECT_EQ(CountLines(quality), 1 + std::size(kRunModes) + resolveDispatches + 1 + passNames.size());
   EXPECT_NE(quality.find("\n1S/1Z/1F sRGB8,frame sRGB8,"), std::string::npos) << quality;
   EXPECT_FALSE(report["frames"][0]["srgb8"].is_null());
   EXPECT_TRUE(report["frames"][1]["srgb8"].is_null());
   EXPECT_NE(quality.find("\n16S/8Z/4F,frame,"), std::string::npos) << quality;
   EXPECT_NE(quality.find("\n8S/4Z/2F fetch,resolve,"), std::string::npos) << quality;
   // Every registered resolve that reads a mode ran on it, in registry order, as its own dispatches.
-  for (std::size_t i = 0; i < std::size(kModes); ++i) {
+  for (std::size_t i = 0; i < std::size(kRunModes); ++i) {
     const nlohmann::json& frame = report["frames"][i];
     const fmask::EqaaConfig mode{frame["samples"].get<int>(), frame["depth_samples"].get<int>(),
                                  frame["fragments"].get<int>()};
@@ -196,7 +196,7 @@ TEST_F(CliRunTest, ReportJsonAgreesWithTheCsvFiles) {
       const nlohmann::json& first = dispatches[resolve["dispatches"][0].get<std::size_t>()];
       EXPECT_EQ(first["name"].get<std::string>().rfind("resolve/" + ran.back(), 0), 0u) << first["name"];
     }
-    EXPECT_EQ(ran, expected) << kModes[i];
+    EXPECT_EQ(ran, expected) << kRunModes[i];
     EXPECT_EQ(dispatches[frame["resolve_dispatch"].get<std::size_t>()]["name"], "frame/resolve");
   }
 }
@@ -240,7 +240,7 @@ TEST_F(CliRunTest, ReportComparesEveryImageAndEveryPass) {
   EXPECT_NE(html.find("id='cmp-view'"), std::string::npos);
   std::size_t resolves = 0;
   for (const nlohmann::json& frame : report["frames"]) resolves += frame["resolves"].size();
-  const std::size_t perGroup = 1 + std::size(kModes) + resolves + 1 + report["passes"].size();
+  const std::size_t perGroup = 1 + std::size(kRunModes) + resolves + 1 + report["passes"].size();
   auto count = [&](const std::string& text) {
     std::size_t n = 0;
     for (std::size_t at = html.find(text); at != std::string::npos; at = html.find(text, at + 1)) ++n;
@@ -263,7 +263,7 @@ TEST_F(CliRunTest, ReportComparesEveryImageAndEveryPass) {
 TEST_F(CliRunTest, SameCountersQualityAndImagesWithOneThread) {
   ASSERT_EQ(run_->exitCode, 0) << run_->err;
   const fs::path one = *scratch_ / "one-thread";
-  const CommandResult run = RunAasim(SmallRun(*scratch_, one, "1"), *scratch_);
+  const CommandResult run = RunAasim(SmallStudyRun(*scratch_, one, "1"), *scratch_);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   for (const char* file : {"counters.csv", "quality.csv", "images/frames/8s-4z-2f/colour.png",
                            "images/frames/8s-4z-2f/eqaa.exr", "images/passes/demo/output.png"}) {
@@ -328,7 +328,7 @@ TEST(CliRun, HelpExplainsEveryOptionAndTheDefaultJob) {
 
 // --post with settings and --strategy reach the study: one strategy, the pass's own setting.
 TEST_F(CliRunTest, PassSettingsAndOneStrategyReachTheStudy) {
-  std::vector<std::string> args = SmallRun(*scratch_, *scratch_ / "queue-only", "2");
+  std::vector<std::string> args = SmallStudyRun(*scratch_, *scratch_ / "queue-only", "2");
   args.insert(args.end(), {"--modes", "1S/1Z/1F", "--post", "demo:threshold=0.3", "--strategy", "queue"});
   const CommandResult run = RunAasim(args, *scratch_);
   ASSERT_EQ(run.exitCode, 0) << run.err;
@@ -357,7 +357,7 @@ nlohmann::json RunInFreshDirectory(const std::string& args, const fs::path& scra
   }
   const nlohmann::json report = nlohmann::json::parse(ReadText(scratch / "out/report/report.json"));
   EXPECT_EQ(report["configuration"]["scene"], "builtin:default");
-  EXPECT_EQ(report["frames"].size(), std::size(kModes));
+  EXPECT_EQ(report["frames"].size(), std::size(kRunModes));
   EXPECT_TRUE(fs::is_regular_file(scratch / "cache/aasim/ground-truth" /
                                   fs::path(report["ground_truth"]["cache_file"].get<std::string>()).filename()));
   return report;
@@ -381,7 +381,7 @@ TEST(CliRun, QuickDefaultStudyWritesItsReportUnderTheWorkingDirectory) {
 TEST(CliRun, SmaaS2xRunsOnTheTwoSampleFrame) {
   const fs::path scratch = fs::temp_directory_path() / ("aasim_cli_run_s2x_" + std::to_string(::getpid()));
   fs::create_directories(scratch);
-  std::vector<std::string> args = SmallRun(scratch, scratch / "out", "2");
+  std::vector<std::string> args = SmallStudyRun(scratch, scratch / "out", "2");
   args.insert(args.end(), {"--post", "smaa-s2x"});
   const CommandResult refused = RunAasim(args, scratch);
   EXPECT_EQ(refused.exitCode, 2);
@@ -434,7 +434,7 @@ TEST(CliRunModes, ParsesBothSpellingsAndRefusesTheRest) {
 
 // --- Every bad input: exit code, one stderr line naming the input, no output directory. ---
 
-std::vector<BadInput> BadInputs() {
+std::vector<BadInput> RunBadInputs() {
   const auto fixed = [](std::vector<std::string> args) {
     return [args](const fs::path& scratch) {
       std::vector<std::string> all{"--cache", (scratch / "cache").string()};
@@ -481,7 +481,7 @@ TEST_P(CliRunBadInputTest, FailsWithOneLineNamingTheInputAndCreatesNothing) {
   EXPECT_FALSE(fs::exists(scratch_ / "cache")) << "no ground truth is rendered for a refused run";
 }
 
-INSTANTIATE_TEST_SUITE_P(CliRun, CliRunBadInputTest, ::testing::ValuesIn(BadInputs()),
+INSTANTIATE_TEST_SUITE_P(CliRun, CliRunBadInputTest, ::testing::ValuesIn(RunBadInputs()),
                          [](const auto& param) { return param.param.name; });
 
 }  // namespace

@@ -36,7 +36,7 @@ Bytes ReadBytes(const fs::path& path) {
 }
 
 // Decodes a PNG, requiring exactly `channels` channels in the file itself.
-Bytes ReadPng(const fs::path& path, int width, int height, int channels) {
+Bytes ReadTablePng(const fs::path& path, int width, int height, int channels) {
   int w = 0, h = 0, c = 0;
   stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &c, 0);
   EXPECT_NE(pixels, nullptr) << path;
@@ -83,14 +83,14 @@ TEST_F(CliSmaaTables, WritesBothTablesAsRawBytesPngsAndAManifest) {
   EXPECT_EQ(search[0], 0xfe);
   EXPECT_EQ(search[3], 0x7f);
 
-  const Bytes areaPng = ReadPng(dir / "smaa_area_tex.png", kAreaTexWidth, kAreaTexHeight, 3);
+  const Bytes areaPng = ReadTablePng(dir / "smaa_area_tex.png", kAreaTexWidth, kAreaTexHeight, 3);
   ASSERT_EQ(areaPng.size(), 3 * area.size() / 2);
   for (std::size_t texel = 0; texel < area.size() / 2; ++texel) {
     ASSERT_EQ(areaPng[3 * texel], area[2 * texel]) << texel;
     ASSERT_EQ(areaPng[3 * texel + 1], area[2 * texel + 1]) << texel;
     ASSERT_EQ(areaPng[3 * texel + 2], 0) << texel;
   }
-  EXPECT_EQ(ReadPng(dir / "smaa_search_tex.png", kSearchTexWidth, kSearchTexHeight, 1), search);
+  EXPECT_EQ(ReadTablePng(dir / "smaa_search_tex.png", kSearchTexWidth, kSearchTexHeight, 1), search);
 
   const nlohmann::json manifest = nlohmann::json::parse(cli::testing::ReadText(dir / "smaa_tables.json"));
   EXPECT_EQ(manifest["schema"], cli::kSmaaTablesSchema);

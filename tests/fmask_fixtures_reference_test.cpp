@@ -23,7 +23,7 @@ namespace {
 using Bytes = std::vector<std::uint8_t>;
 using Rgba = std::array<std::uint8_t, 4>;
 
-constexpr int kSize = 8;  // every case is one 8x8 tile
+constexpr int kTileSize = 8;  // every case is one 8x8 tile
 constexpr int kMaxPlanes = 4;
 constexpr float kClearDepth = 1.0f;
 constexpr Rgba kClearColour{0, 0, 0, 255};
@@ -68,11 +68,11 @@ struct Setup {
 bool SetUp(const fmask::FixtureTriangle& triangle, Setup& out) {
   for (int i = 0; i < 3; ++i) {
     const fmask::FixtureVertex& fv = triangle.vertices[i];
-    const float clipX = static_cast<float>(fv.x / kSize * 2.0 - 1.0);
-    const float clipY = static_cast<float>(1.0 - fv.y / kSize * 2.0);
+    const float clipX = static_cast<float>(fv.x / kTileSize * 2.0 - 1.0);
+    const float clipY = static_cast<float>(1.0 - fv.y / kTileSize * 2.0);
     const double invW = 1.0 / 1.0;
     const double ndcX = static_cast<double>(clipX) * invW, ndcY = static_cast<double>(clipY) * invW;
-    out.v[i] = {std::llround((ndcX * 0.5 + 0.5) * kSize * 256.0), std::llround((0.5 - ndcY * 0.5) * kSize * 256.0),
+    out.v[i] = {std::llround((ndcX * 0.5 + 0.5) * kTileSize * 256.0), std::llround((0.5 - ndcY * 0.5) * kTileSize * 256.0),
                 static_cast<float>(static_cast<double>(fv.z) * invW)};
   }
   auto area = [&] {
@@ -102,12 +102,12 @@ bool SetUp(const fmask::FixtureTriangle& triangle, Setup& out) {
   return true;
 }
 
-class Reference {
+class ReferenceDecoder {
  public:
-  Reference(const fmask::FixtureSpec& spec, raster::SamplePattern pattern)
+  ReferenceDecoder(const fmask::FixtureSpec& spec, raster::SamplePattern pattern)
       : s_(spec.config.coverageSamples), z_(spec.config.depthSamples), f_(spec.config.fragments),
         unknown_(f_), pattern_(std::move(pattern)) {
-    const std::size_t pixels = kSize * kSize;
+    const std::size_t pixels = kTileSize * kTileSize;
     code_.assign(pixels * s_, 0);
     occupied_.assign(pixels * f_, false);
     colour_.assign(pixels * f_, kClearColour);
@@ -122,8 +122,8 @@ class Reference {
       if (!SetUp(triangle, tri) || HiZRejects(tri)) continue;
       bool wholeTile = true, wrote = false;
       float writtenMin = 0, writtenMax = 0;
-      for (int qy = 0; qy < kSize; qy += 2) {
-        for (int qx = 0; qx < kSize; qx += 2) {
+      for (int qy = 0; qy < kTileSize; qy += 2) {
+        for (int qx = 0; qx < kTileSize; qx += 2) {
           for (int q = 0; q < 4; ++q) {
             const int x = qx + (q & 1), y = qy + (q >> 1);
             const auto [passedAll, lo, hi, any] = Pixel(tri, triangle.colour, x, y);
@@ -148,9 +148,9 @@ class Reference {
   Files Derive() const {
     Files d;
     const int bits = BitsPerSample(s_, f_), elementBytes = std::max(8, s_ * bits) / 8;
-    for (int y = 0; y < kSize; ++y) {
-      for (int x = 0; x < kSize; ++x) {
-        const int p = y * kSize + x;
+    for (int y = 0; y < kTileSize; ++y) {
+      for (int x = 0; x < kTileSize; ++x) {
+        const int p = y * kTileSize + x;
         std::uint64_t element = 0;
         for (int s = 0; s < s_; ++s) element |= static_cast<std::uint64_t>(code_[p * s_ + s]) << (s * bits);
         for (int i = 0; i < elementBytes; ++i) d.fmask.push_back(static_cast<std::uint8_t>(element >> (8 * i)));
@@ -196,7 +196,7 @@ class Reference {
   }
 
   float Stored(int x, int y, int s) const {
-    const int p = y * kSize + x;
+    const int p = y * kTileSize + x;
     if (state_ == State::Cleared) return kClearDepth;
     if (state_ == State::Decompressed) return anchorDepth_[p * z_ + Nearest(x, y, s)];
     return planes_[planeOf_[p * s_ + s]].At(X(x, y, s), Y(x, y, s));
@@ -217,8 +217,8 @@ class Reference {
     const std::int64_t y0 = 128 + 16 * minY, y1 = 7 * 256 + 128 + 16 * maxY;
     // Tiles the triangle cannot touch are skipped before hi-Z: nothing to reject then.
     bool anyInside = false;
-    for (int y = 0; y < kSize && !anyInside; ++y) {
-      for (int x = 0; x < kSize && !anyInside; ++x) {
+    for (int y = 0; y < kTileSize && !anyInside; ++y) {
+      for (int x = 0; x < kTileSize && !anyInside; ++x) {
         for (int s = 0; s < s_; ++s) anyInside |= Inside(tri, X(x, y, s), Y(x, y, s));
       }
     }
@@ -243,7 +243,7 @@ class Reference {
 
   // docs/raster.md "One pixel through the depth unit", then docs/eqaa.md "One pixel update".
   PixelWrite Pixel(const Setup& tri, const Rgba& colour, int x, int y) {
-    const int p = y * kSize + x;
+    const int p = y * kTileSize + x;
     unsigned covered = 0, passed = 0;
     std::array<float, 16> incoming{};
     for (int s = 0; s < s_; ++s) {
@@ -299,9 +299,9 @@ class Reference {
       planes_ = kept;
     }
     if (planes_.size() == kMaxPlanes) {
-      for (int y = 0; y < kSize; ++y) {
-        for (int x = 0; x < kSize; ++x) {
-          for (int a = 0; a < z_; ++a) anchorDepth_[(y * kSize + x) * z_ + a] = Stored(x, y, a);
+      for (int y = 0; y < kTileSize; ++y) {
+        for (int x = 0; x < kTileSize; ++x) {
+          for (int a = 0; a < z_; ++a) anchorDepth_[(y * kTileSize + x) * z_ + a] = Stored(x, y, a);
         }
       }
       state_ = State::Decompressed;
@@ -371,7 +371,7 @@ TEST(FmaskFixturesFromTheDocs, EveryFileOfEveryFixture) {
   for (const fmask::FixtureSpec& spec : fmask::CanonicalFixtureSet()) {
     SCOPED_TRACE(fmask::FixtureName(spec));
     const fmask::FixtureData data = fmask::DeriveFixture(spec);
-    Reference reference(spec, raster::MakeBuiltinPattern(spec.pattern, spec.config.coverageSamples));
+    ReferenceDecoder reference(spec, raster::MakeBuiltinPattern(spec.pattern, spec.config.coverageSamples));
     reference.Draw(fmask::CanonicalCase(spec.caseName));
     const Files expected = reference.Derive();
     EXPECT_EQ(data.fmask, expected.fmask);

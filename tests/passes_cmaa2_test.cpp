@@ -272,7 +272,7 @@ TEST(Cmaa2Golden, OddSizedRandomImagesGiveBitIdenticalImagesUnderBothStrategies)
 
 // ---- Symmetry ----
 
-sim::Texture2D<glm::vec4> Transformed(const sim::Texture2D<glm::vec4>& image, int kind) {
+sim::Texture2D<glm::vec4> TransformedImage(const sim::Texture2D<glm::vec4>& image, int kind) {
   const int w = image.Width(), h = image.Height();
   const bool transpose = kind == 2;
   sim::Texture2D<glm::vec4> out("transformed", transpose ? h : w, transpose ? w : h, 16);
@@ -296,7 +296,7 @@ sim::Texture2D<glm::vec4> ZStep(int left, int right) {
 // transpose), transformed back, is bit-identical to its output of the image.
 bool Symmetric(const sim::Texture2D<glm::vec4>& image, int kind) {
   const PassOutput straight = RunCmaa2(image).output;
-  const sim::Texture2D<glm::vec4> back = Transformed(RunCmaa2(Transformed(image, kind)).output.colour, kind);
+  const sim::Texture2D<glm::vec4> back = TransformedImage(RunCmaa2(TransformedImage(image, kind)).output.colour, kind);
   for (int y = 0; y < image.Height(); ++y) {
     for (int x = 0; x < image.Width(); ++x) {
       if (back.At(x, y) != straight.colour.At(x, y)) return false;
@@ -325,7 +325,7 @@ TEST(Cmaa2Symmetry, SwappingAZsHalvesCanMoveOnePixelByOneCode) {
   for (const int kind : {0, 2}) {
     EXPECT_FALSE(Symmetric(image, kind)) << kind;
     const PassOutput straight = RunCmaa2(image).output;
-    const sim::Texture2D<glm::vec4> back = Transformed(RunCmaa2(Transformed(image, kind)).output.colour, kind);
+    const sim::Texture2D<glm::vec4> back = TransformedImage(RunCmaa2(TransformedImage(image, kind)).output.colour, kind);
     int differing = 0;
     for (int y = 0; y < image.Height(); ++y) {
       for (int x = 0; x < image.Width(); ++x) {

@@ -24,7 +24,7 @@ namespace {
 
 using raster::testing::ScreenToClip;
 
-constexpr int kSize = 48;
+constexpr int kCraaSize = 48;
 
 // The area of the unit pixel [x, x+1] x [y, y+1] on the side n.p >= c of a line, by clipping the
 // square (Sutherland-Hodgman against one half-plane) and the shoelace formula.
@@ -66,7 +66,7 @@ std::unique_ptr<EdgeFrame> RenderEdge(double degrees, glm::dvec2 through, fmask:
   const glm::dvec2 d(std::cos(radians), std::sin(radians)), n(-d.y, d.x);
   const std::array<glm::dvec2, 3> corners{through - 100.0 * d, through + 100.0 * n, through + 100.0 * d};
   sim::FrameSettings settings;
-  settings.width = settings.height = kSize;
+  settings.width = settings.height = kCraaSize;
   settings.eqaa = mode;
   frame->pattern = raster::MakeBuiltinPattern("eqaa", mode.coverageSamples);
   settings.pattern = frame->pattern;
@@ -74,7 +74,7 @@ std::unique_ptr<EdgeFrame> RenderEdge(double degrees, glm::dvec2 through, fmask:
   settings.clearColour = {0.0f, 0.0f, 0.0f, 1.0f};
   const glm::vec3 normal = glm::normalize(settings.towardsLight);
   std::vector<glm::vec4> clip;
-  for (const glm::dvec2& p : corners) clip.push_back(ScreenToClip(p.x, p.y, 0.5, kSize, kSize));
+  for (const glm::dvec2& p : corners) clip.push_back(ScreenToClip(p.x, p.y, 0.5, kCraaSize, kCraaSize));
   const std::vector<glm::vec3> normals(3, normal);
   const std::vector<std::uint32_t> indices{0, 1, 2}, objects{0};
   const std::vector<glm::vec3> colours{glm::vec3(1.0f)};
@@ -93,8 +93,8 @@ struct EdgeError {
 // screen's border (where clamp addressing, not the resolve, decides).
 EdgeError ErrorOnEdge(const sim::Texture2D<glm::vec4>& image, const EdgeScene& edge) {
   EdgeError error;
-  for (int y = 1; y < kSize - 1; ++y) {
-    for (int x = 1; x < kSize - 1; ++x) {
+  for (int y = 1; y < kCraaSize - 1; ++y) {
+    for (int x = 1; x < kCraaSize - 1; ++x) {
       const double area = CoveredArea(x, y, edge.n, edge.c);
       if (area <= 0.0 || area >= 1.0) continue;
       const double e = std::abs(static_cast<double>(image.At(x, y).r) - area);
@@ -127,7 +127,7 @@ TEST(CraaSimple, ReconstructsTheCoverageOfStraightEdgesAtEveryAngle) {
     const auto aliased = RenderEdge(degrees, through, {1, 1, 1});
     const EdgeError simple = ErrorOnEdge(Resolved(*eqaa, "craa-simple"), eqaa->edge);
     const EdgeError box1x = ErrorOnEdge(aliased->pipeline->Colour(), aliased->edge);
-    ASSERT_GT(simple.pixels, kSize / 2) << degrees;
+    ASSERT_GT(simple.pixels, kCraaSize / 2) << degrees;
     EXPECT_LE(simple.mean, 0.11) << degrees << " degrees";
     EXPECT_LT(simple.mean, box1x.mean) << degrees << " degrees";
     total += simple.mean;
@@ -180,8 +180,8 @@ TEST(CraaSimple, FetchesANeighbourOnlyForPixelsWithUnknownSamples) {
   const sim::DispatchReport& report = frame->machine.Reports().back();
   const fmask::EqaaSurface& surface = frame->pipeline->Eqaa();
   std::uint64_t expected = 0;
-  for (int y = 0; y < kSize; ++y) {
-    for (int x = 0; x < kSize; ++x) {
+  for (int y = 0; y < kCraaSize; ++y) {
+    for (int x = 0; x < kCraaSize; ++x) {
       const auto unknown = static_cast<std::uint32_t>(surface.Fmask(x, y));
       const Side side = InferredSide(frame->pattern, raster::QuadPixelIndex(x, y), unknown);
       expected += 1 + (side == Side::None ? 0 : side == Side::Balanced ? 4 : 1);
@@ -191,10 +191,10 @@ TEST(CraaSimple, FetchesANeighbourOnlyForPixelsWithUnknownSamples) {
     if (traffic.name == "eqaa/fragments") {
       EXPECT_EQ(traffic.fetches, expected);
     } else if (traffic.name == "eqaa/fmask") {
-      EXPECT_EQ(traffic.fetches, std::uint64_t{kSize} * kSize);
+      EXPECT_EQ(traffic.fetches, std::uint64_t{kCraaSize} * kCraaSize);
     }
   }
-  EXPECT_GT(expected, std::uint64_t{kSize} * kSize + kSize / 2);
+  EXPECT_GT(expected, std::uint64_t{kCraaSize} * kCraaSize + kCraaSize / 2);
 }
 
 TEST(CraaSimple, RefusesSurfacesWithMoreThanOneFragment) {

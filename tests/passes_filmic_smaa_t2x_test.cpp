@@ -25,43 +25,43 @@ namespace {
 
 using testing::GreyImage;
 
-struct Frame {
+struct FilmicFrame {
   sim::Texture2D<glm::vec4> colour;
   sim::Texture2D<float> depth;
   sim::Texture2D<glm::vec2> velocity;
 };
 
-constexpr int kWidth = 48, kHeight = 40, kStep = 4, kBackground = 60;
+constexpr int kFilmicWidth = 48, kFilmicHeight = 40, kStep = 4, kBackground = 60;
 
-bool InBox(int frame, int x, int y) { return x >= 8 + kStep * frame && x < 20 + kStep * frame && y >= 10 && y < 24; }
+bool InFilmicBox(int frame, int x, int y) { return x >= 8 + kStep * frame && x < 20 + kStep * frame && y >= 10 && y < 24; }
 
 // A box moving right by 4 px per frame, nearer than the background; `background(x, y, k)` gives
 // the background's codes, `box(k)` the box's.
-Frame BoxFrame(int k, const std::function<int(int, int, int)>& background, const std::function<int(int)>& box) {
-  Frame frame{GreyImage(kWidth, kHeight, [&](int x, int y) { return InBox(k, x, y) ? box(k) : background(x, y, k); }),
-              sim::Texture2D<float>("depth", kWidth, kHeight), sim::Texture2D<glm::vec2>("velocity", kWidth, kHeight)};
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      frame.depth.At(x, y) = InBox(k, x, y) ? 0.3f : 0.8f;
-      frame.velocity.At(x, y) = InBox(k, x, y) ? glm::vec2(kStep, 0) : glm::vec2(0);
+FilmicFrame FilmicBoxFrame(int k, const std::function<int(int, int, int)>& background, const std::function<int(int)>& box) {
+  FilmicFrame frame{GreyImage(kFilmicWidth, kFilmicHeight, [&](int x, int y) { return InFilmicBox(k, x, y) ? box(k) : background(x, y, k); }),
+              sim::Texture2D<float>("depth", kFilmicWidth, kFilmicHeight), sim::Texture2D<glm::vec2>("velocity", kFilmicWidth, kFilmicHeight)};
+  for (int y = 0; y < kFilmicHeight; ++y) {
+    for (int x = 0; x < kFilmicWidth; ++x) {
+      frame.depth.At(x, y) = InFilmicBox(k, x, y) ? 0.3f : 0.8f;
+      frame.velocity.At(x, y) = InFilmicBox(k, x, y) ? glm::vec2(kStep, 0) : glm::vec2(0);
     }
   }
   return frame;
 }
 
-struct SequenceRun {
+struct FilmicSequenceRun {
   std::vector<PassOutput> outputs;
   std::vector<sim::DispatchReport> reports;
 };
 
-SequenceRun RunSequence(std::string_view spec, int frames, const std::function<Frame(int)>& make, Strategy strategy,
+FilmicSequenceRun RunFilmicSequence(std::string_view spec, int frames, const std::function<FilmicFrame(int)>& make, Strategy strategy,
                 int threads = 2, double frameSeconds = 1.0 / 60.0) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   const std::unique_ptr<Pass> pass = ResolvePass(spec).Make();
-  SequenceRun run;
+  FilmicSequenceRun run;
   for (int k = 0; k < frames; ++k) {
-    const Frame frame = make(k);
+    const FilmicFrame frame = make(k);
     // The t2x schedule's jitter (aa-facts §1.8, y down).
     const glm::vec2 jitter = k % 2 == 0 ? glm::vec2(0.25f) : glm::vec2(-0.25f);
     run.outputs.push_back(pass->Run(machine,
@@ -94,17 +94,17 @@ int FlickeringBox(int k) { return k % 3 == 0 ? 200 : (k % 3 == 1 ? 235 : 170); }
 int Checker(int x, int y, int) { return (x / 6 + y / 6) % 2 == 0 ? kBackground : 150; }
 
 TEST(FilmicSmaaT2x, TheFilteredPixelsKeepExpOfMinusDtOverTauOfTheHistoryAtTwoFrameRates) {
-  const auto make = [](int k) { return BoxFrame(k, Checker, FlickeringBox); };
+  const auto make = [](int k) { return FilmicBoxFrame(k, Checker, FlickeringBox); };
   constexpr double kTau = 0.158;
-  const SequenceRun fast = RunSequence("filmic-smaa-t2x", 2, make, Strategy::StencilCulled, 2, 1.0 / 60.0);
-  const SequenceRun slow = RunSequence("filmic-smaa-t2x", 2, make, Strategy::StencilCulled, 2, 1.0 / 30.0);
-  const SequenceRun current = RunSequence("filmic-smaa-t2x:convergence_time=0.001", 2, make, Strategy::StencilCulled);
+  const FilmicSequenceRun fast = RunFilmicSequence("filmic-smaa-t2x", 2, make, Strategy::StencilCulled, 2, 1.0 / 60.0);
+  const FilmicSequenceRun slow = RunFilmicSequence("filmic-smaa-t2x", 2, make, Strategy::StencilCulled, 2, 1.0 / 30.0);
+  const FilmicSequenceRun current = RunFilmicSequence("filmic-smaa-t2x:convergence_time=0.001", 2, make, Strategy::StencilCulled);
   const double expectedRatio = std::exp(-(1.0 / 60.0) / kTau) / std::exp(-(1.0 / 30.0) / kTau);
   const PassLayer& edges = testing::LayerNamed(fast.outputs[1], "temporal-edges");
   ASSERT_EQ(edges.Floats(), testing::LayerNamed(slow.outputs[1], "temporal-edges").Floats());
   int checked = 0;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kFilmicHeight; ++y) {
+    for (int x = 0; x < kFilmicWidth; ++x) {
       const glm::vec4 f = fast.outputs[1].colour.At(x, y), s = slow.outputs[1].colour.At(x, y);
       const glm::vec4 r = current.outputs[1].colour.At(x, y);
       if (testing::LayerValue(edges, x, y) == 0.0f) {
@@ -126,9 +126,9 @@ TEST(FilmicSmaaT2x, TheFilteredPixelsKeepExpOfMinusDtOverTauOfTheHistoryAtTwoFra
 // depth test reject the previous frames there). Pixels 2-4 px behind the box's trailing edge,
 // whose 2x2 depth block the box covered in the previous frame.
 TEST(FilmicSmaaT2x, ADisocclusionLeavesNoGhostFromItsFirstFrame) {
-  const auto make = [](int k) { return BoxFrame(k, [](int, int, int) { return kBackground; }, [](int) { return 230; }); };
+  const auto make = [](int k) { return FilmicBoxFrame(k, [](int, int, int) { return kBackground; }, [](int) { return 230; }); };
   for (const Strategy strategy : kAllStrategies) {
-    const SequenceRun run = RunSequence("filmic-smaa-t2x", 6, make, strategy);
+    const FilmicSequenceRun run = RunFilmicSequence("filmic-smaa-t2x", 6, make, strategy);
     for (int k = 1; k < 6; ++k) {
       for (int disoccludedAt = 1; disoccludedAt <= k; ++disoccludedAt) {
         for (const int x : {4 + kStep * disoccludedAt, 5 + kStep * disoccludedAt}) {
@@ -144,10 +144,10 @@ TEST(FilmicSmaaT2x, ADisocclusionLeavesNoGhostFromItsFirstFrame) {
 }
 
 TEST(FilmicSmaaT2x, StrategiesAndThreadsGiveIdenticalImagesAndCountersOverASequence) {
-  const auto make = [](int k) { return BoxFrame(k, Checker, FlickeringBox); };
-  const SequenceRun stencil = RunSequence("filmic-smaa-t2x", 5, make, Strategy::StencilCulled);
-  const SequenceRun queue = RunSequence("filmic-smaa-t2x", 5, make, Strategy::DeferredQueue);
-  const SequenceRun queueOne = RunSequence("filmic-smaa-t2x", 5, make, Strategy::DeferredQueue, 1);
+  const auto make = [](int k) { return FilmicBoxFrame(k, Checker, FlickeringBox); };
+  const FilmicSequenceRun stencil = RunFilmicSequence("filmic-smaa-t2x", 5, make, Strategy::StencilCulled);
+  const FilmicSequenceRun queue = RunFilmicSequence("filmic-smaa-t2x", 5, make, Strategy::DeferredQueue);
+  const FilmicSequenceRun queueOne = RunFilmicSequence("filmic-smaa-t2x", 5, make, Strategy::DeferredQueue, 1);
   std::uint64_t temporalItems = 0;
   for (std::size_t k = 0; k < stencil.outputs.size(); ++k) {
     EXPECT_TRUE(CompareOutputs(stencil.outputs[k], queue.outputs[k]).Identical())

@@ -81,7 +81,7 @@ using testing::Codes;
 using testing::GreyImage;
 
 
-PassOutput RunPass(std::string_view spec, const sim::Texture2D<glm::vec4>& image, Strategy strategy = Strategy::DeferredQueue) {
+PassOutput RunFilmicPass(std::string_view spec, const sim::Texture2D<glm::vec4>& image, Strategy strategy = Strategy::DeferredQueue) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   return ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image}, strategy);
 }
@@ -96,9 +96,9 @@ float LeftEdge(const PassOutput& output, int x, int y) { return At(LayerNamed(ou
 // through the bright pixel meets the weak edge's endpoints, so the morphological rule keeps it.
 TEST(FilmicSmaaSuppression, KeepsAWeakEdgeThatLocalContrastAdaptationDrops) {
   const auto image = GreyImage(12, 10, [](int x, int y) { return x == 5 && y == 2 ? 240 : x >= 5 ? 80 : 40; });
-  EXPECT_EQ(LeftEdge(RunPass("smaa", image), 5, 4), 0.0f);
-  EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 5, 4), 1.0f);
-  EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 5, 7), 1.0f);
+  EXPECT_EQ(LeftEdge(RunFilmicPass("smaa", image), 5, 4), 0.0f);
+  EXPECT_EQ(LeftEdge(RunFilmicPass("filmic-smaa", image), 5, 4), 1.0f);
+  EXPECT_EQ(LeftEdge(RunFilmicPass("filmic-smaa", image), 5, 7), 1.0f);
 }
 
 // And the other way: a weak step (40 -> 80) beside a stronger parallel step (80 -> 140): within
@@ -106,9 +106,9 @@ TEST(FilmicSmaaSuppression, KeepsAWeakEdgeThatLocalContrastAdaptationDrops) {
 // the weak edge, so the morphological rule drops it.
 TEST(FilmicSmaaSuppression, DropsAWeakEdgeBesideAStrongerParallelLineThatSmaaKeeps) {
   const auto image = GreyImage(12, 10, [](int x, int) { return x < 5 ? 40 : x == 5 ? 80 : 140; });
-  EXPECT_EQ(LeftEdge(RunPass("smaa", image), 5, 4), 1.0f);
-  EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 5, 4), 0.0f);
-  EXPECT_EQ(LeftEdge(RunPass("filmic-smaa", image), 6, 4), 1.0f);
+  EXPECT_EQ(LeftEdge(RunFilmicPass("smaa", image), 5, 4), 1.0f);
+  EXPECT_EQ(LeftEdge(RunFilmicPass("filmic-smaa", image), 5, 4), 0.0f);
+  EXPECT_EQ(LeftEdge(RunFilmicPass("filmic-smaa", image), 6, 4), 1.0f);
 }
 
 // A weak vertical line crossing a strong horizontal one: right at the crossing the horizontal
@@ -116,7 +116,7 @@ TEST(FilmicSmaaSuppression, DropsAWeakEdgeBesideAStrongerParallelLineThatSmaaKee
 // is dropped there and kept away from the crossing; the strong line is kept across it.
 TEST(FilmicSmaaSuppression, AWeakLineIsDroppedWhereItMeetsAStrongerCrossingLine) {
   const auto image = GreyImage(16, 16, [](int x, int y) { return (y < 8 ? 200 : 40) + (x >= 10 ? 30 : 0); });
-  const PassOutput output = RunPass("filmic-smaa", image);
+  const PassOutput output = RunFilmicPass("filmic-smaa", image);
   EXPECT_EQ(LeftEdge(output, 10, 8), 0.0f);
   EXPECT_EQ(LeftEdge(output, 10, 12), 1.0f);
   EXPECT_EQ(LeftEdge(output, 10, 4), 1.0f);
@@ -128,7 +128,7 @@ TEST(FilmicSmaaSuppression, AWeakLineIsDroppedWhereItMeetsAStrongerCrossingLine)
 // Random images: grey noise of a few levels (edges everywhere, every tie), and blocks of random
 // size (long lines, corners, 1-px features). Sizes not multiples of 8 put partial groups at the
 // right and bottom.
-sim::Texture2D<glm::vec4> RandomImage(unsigned seed, bool blocks) {
+sim::Texture2D<glm::vec4> RandomFilmicImage(unsigned seed, bool blocks) {
   std::mt19937 random(seed);
   const int width = 37 + static_cast<int>(seed % 5), height = 29 + static_cast<int>(seed % 7);
   std::uniform_int_distribution<int> level(0, 4);
@@ -170,9 +170,9 @@ TEST(FilmicSmaaDualEdges, NoPixelIsWrittenByTwoItemsOfOneDispatch) {
   std::uint64_t items = 0;
   for (unsigned seed = 1; seed <= 12; ++seed) {
     for (const bool blocks : {false, true}) {
-      const auto image = RandomImage(seed, blocks);
+      const auto image = RandomFilmicImage(seed, blocks);
       for (const Strategy strategy : kAllStrategies) {
-        const PassOutput output = RunPass("filmic-smaa", image, strategy);
+        const PassOutput output = RunFilmicPass("filmic-smaa", image, strategy);
         ExpectOneWriterPerPixel(output, "seed " + std::to_string(seed) + (blocks ? " blocks " : " noise ") +
                                             std::string(StrategyName(strategy)));
         items += output.workItems;
@@ -187,7 +187,7 @@ TEST(FilmicSmaaDualEdges, NoPixelIsWrittenByTwoItemsOfOneDispatch) {
 // stays for the searches).
 TEST(FilmicSmaaDualEdges, OfTwoAdjacentEqualEdgesTheLeftOneKeepsItsItem) {
   const auto image = GreyImage(16, 12, [](int x, int) { return x == 7 ? 200 : 40; });
-  const PassOutput output = RunPass("filmic-smaa", image);
+  const PassOutput output = RunFilmicPass("filmic-smaa", image);
   for (int y = 0; y < 12; ++y) {
     EXPECT_EQ(At(LayerNamed(output, "items"), 7, y), 1.0f) << y;
     EXPECT_EQ(At(LayerNamed(output, "items"), 8, y), 0.0f) << y;
@@ -200,9 +200,9 @@ TEST(FilmicSmaaDualEdges, OfTwoAdjacentEqualEdgesTheLeftOneKeepsItsItem) {
 TEST(FilmicSmaaDualEdges, StrategiesAreBitIdenticalOnRandomImages) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     for (const bool blocks : {false, true}) {
-      const auto image = RandomImage(seed, blocks);
+      const auto image = RandomFilmicImage(seed, blocks);
       const StrategyDifference difference =
-          CompareOutputs(RunPass("filmic-smaa", image, Strategy::StencilCulled), RunPass("filmic-smaa", image));
+          CompareOutputs(RunFilmicPass("filmic-smaa", image, Strategy::StencilCulled), RunFilmicPass("filmic-smaa", image));
       EXPECT_TRUE(difference.Identical()) << "seed " << seed << ": " << difference.Describe();
     }
   }
@@ -211,7 +211,7 @@ TEST(FilmicSmaaDualEdges, StrategiesAreBitIdenticalOnRandomImages) {
 // ---- Output ----
 
 // Exact coverage of a pixel by a shape, by 64x64 supersampling.
-double Coverage(int x, int y, const std::function<bool(double, double)>& inside) {
+double FilmicCoverage(int x, int y, const std::function<bool(double, double)>& inside) {
   int hits = 0;
   for (int j = 0; j < 64; ++j) {
     for (int i = 0; i < 64; ++i) hits += inside(x + (i + 0.5) / 64, y + (j + 0.5) / 64);
@@ -227,11 +227,11 @@ struct Errors {
 // White shape on black: L1 errors against the true coverage, and filmic's output against SMAA's.
 Errors ErrorsOf(int width, int height, const std::function<bool(double, double)>& inside) {
   const auto image = GreyImage(width, height, [&](int x, int y) { return inside(x + 0.5, y + 0.5) ? 255 : 0; });
-  const PassOutput smaa = RunPass("smaa", image), filmic = RunPass("filmic-smaa", image);
+  const PassOutput smaa = RunFilmicPass("smaa", image), filmic = RunFilmicPass("filmic-smaa", image);
   Errors errors;
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      const double truth = Coverage(x, y, inside);
+      const double truth = FilmicCoverage(x, y, inside);
       errors.aliased += std::fabs(static_cast<double>(image.At(x, y).r) - truth);
       errors.smaa += std::fabs(static_cast<double>(smaa.colour.At(x, y).r) - truth);
       errors.filmic += std::fabs(static_cast<double>(filmic.colour.At(x, y).r) - truth);

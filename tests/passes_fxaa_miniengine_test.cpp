@@ -96,26 +96,26 @@ TEST(FxaaMiniEngineSearch, TheShiftIsOneHalfLessTheNearerEndsShareOnlyWhenThatEn
 
 // ---- Running the pass ----
 
-struct FxaaRun {
+struct MiniEngineRun {
   PassOutput output;
   std::vector<sim::DispatchReport> reports;
 };
 
-FxaaRun RunFxaa(const sim::Texture2D<glm::vec4>& image, Strategy strategy, const std::string& spec = "fxaa-miniengine",
+MiniEngineRun RunMiniEngine(const sim::Texture2D<glm::vec4>& image, Strategy strategy, const std::string& spec = "fxaa-miniengine",
             int threads = 2) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   const PassConfig config = ResolvePass(spec);
   FrameInputs frame;
   frame.colour = &image;
-  FxaaRun run{config.pass->make(config.settings)->Run(machine, frame, strategy), {}};
+  MiniEngineRun run{config.pass->make(config.settings)->Run(machine, frame, strategy), {}};
   run.reports = machine.Reports();
   return run;
 }
 
 float Red(const PassOutput& output, int x, int y) { return output.colour.At(x, y).x; }
 
-std::uint64_t Sum(const FxaaRun& run, std::string_view dispatch, std::uint64_t sim::LaneCounters::*counter) {
+std::uint64_t Sum(const MiniEngineRun& run, std::string_view dispatch, std::uint64_t sim::LaneCounters::*counter) {
   std::uint64_t total = 0;
   for (const sim::DispatchReport& report : run.reports) {
     if (report.name == dispatch) total += report.lanes.*counter;
@@ -123,7 +123,7 @@ std::uint64_t Sum(const FxaaRun& run, std::string_view dispatch, std::uint64_t s
   return total;
 }
 
-std::uint64_t DroppedStores(const FxaaRun& run, std::string_view dispatch, std::string_view resource) {
+std::uint64_t DroppedStores(const MiniEngineRun& run, std::string_view dispatch, std::string_view resource) {
   std::uint64_t total = 0;
   for (const sim::DispatchReport& report : run.reports) {
     if (report.name != dispatch) continue;
@@ -143,7 +143,7 @@ sim::Texture2D<glm::vec4> VerticalSegment(bool transposed = false) {
   });
 }
 
-float Stored(float value) { return sim::QuantizeChannel(sim::Format::R11G11B10Float, 0, value); }
+float StoredR11G11B10(float value) { return sim::QuantizeChannel(sim::Format::R11G11B10Float, 0, value); }
 
 // Hand derivation (docs/fxaa-miniengine.md "A worked step edge"): a white pixel beside the edge
 // has N, S, E white and W black: edgeVert 4 > edgeHorz 0, a vertical item, gradient towards -x
@@ -156,11 +156,11 @@ float Stored(float value) { return sim::QuantizeChannel(sim::Format::R11G11B10Fl
 // ends of the other sign (not good): only its sub-pixel shift, 16 / 254 * 0.5.
 TEST(FxaaMiniEngineGolden, AStepEdgeBlendsByTheDistanceToItsNearerEnd) {
   for (const Strategy strategy : kAllStrategies) {
-    const PassOutput out = RunFxaa(VerticalSegment(), strategy).output;
+    const PassOutput out = RunMiniEngine(VerticalSegment(), strategy).output;
     const float subpix = 16.0f / 254.0f * 0.5f;
-    EXPECT_EQ(Red(out, 20, 9), Stored(1.0f + 0.4f * (0.0f - 1.0f))) << StrategyName(strategy);
-    EXPECT_EQ(Red(out, 20, 16), Stored(1.0f + (0.5f - 10.5f / 33.0f) * (0.0f - 1.0f))) << StrategyName(strategy);
-    EXPECT_EQ(Red(out, 19, 16), Stored(0.0f + subpix * 1.0f)) << StrategyName(strategy);
+    EXPECT_EQ(Red(out, 20, 9), StoredR11G11B10(1.0f + 0.4f * (0.0f - 1.0f))) << StrategyName(strategy);
+    EXPECT_EQ(Red(out, 20, 16), StoredR11G11B10(1.0f + (0.5f - 10.5f / 33.0f) * (0.0f - 1.0f))) << StrategyName(strategy);
+    EXPECT_EQ(Red(out, 19, 16), StoredR11G11B10(0.0f + subpix * 1.0f)) << StrategyName(strategy);
     EXPECT_EQ(Red(out, 40, 60), 0.0f);  // far from the edge: untouched
     EXPECT_EQ(Red(out, 21, 24), 1.0f);
   }
@@ -170,16 +170,16 @@ TEST(FxaaMiniEngineGolden, AStepEdgeBlendsByTheDistanceToItsNearerEnd) {
 // step past 1 is 2.5, and gives up at 36.5: row 9 blends by 0.5 - 2 / 38.5.
 TEST(FxaaMiniEngineGolden, TheExtremeTableFindsTheEndAtTwoPixels) {
   for (const Strategy strategy : kAllStrategies) {
-    const PassOutput out = RunFxaa(VerticalSegment(), strategy, "fxaa-miniengine:extreme_quality=1").output;
-    EXPECT_EQ(Red(out, 20, 9), Stored(1.0f + (0.5f - 2.0f / 38.5f) * (0.0f - 1.0f))) << StrategyName(strategy);
-    EXPECT_EQ(Red(out, 20, 16), Stored(1.0f + (0.5f - 10.5f / 47.0f) * (0.0f - 1.0f))) << StrategyName(strategy);
+    const PassOutput out = RunMiniEngine(VerticalSegment(), strategy, "fxaa-miniengine:extreme_quality=1").output;
+    EXPECT_EQ(Red(out, 20, 9), StoredR11G11B10(1.0f + (0.5f - 2.0f / 38.5f) * (0.0f - 1.0f))) << StrategyName(strategy);
+    EXPECT_EQ(Red(out, 20, 16), StoredR11G11B10(1.0f + (0.5f - 10.5f / 47.0f) * (0.0f - 1.0f))) << StrategyName(strategy);
   }
 }
 
 TEST(FxaaMiniEngineGolden, TheTransposedEdgeGivesTheTransposedImage) {
   for (const Strategy strategy : kAllStrategies) {
-    const PassOutput out = RunFxaa(VerticalSegment(), strategy).output;
-    const PassOutput transposed = RunFxaa(VerticalSegment(true), strategy).output;
+    const PassOutput out = RunMiniEngine(VerticalSegment(), strategy).output;
+    const PassOutput transposed = RunMiniEngine(VerticalSegment(true), strategy).output;
     for (int y = 0; y < 128; ++y) {
       for (int x = 0; x < 128; ++x) ASSERT_EQ(out.colour.At(x, y), transposed.colour.At(y, x)) << x << ", " << y;
     }
@@ -192,7 +192,7 @@ TEST(FxaaMiniEngineGolden, TheTransposedEdgeGivesTheTransposedImage) {
 // resolve: every pass-2 dispatch runs whole waves, the dummies it adds are fewer than 64 per end
 // and quadrant, and each dummy's store is dropped and counted on the colour target.
 TEST(FxaaMiniEngineQueue, DummyItemsPadEachEndToWholeWavesAndTheirStoresAreDropped) {
-  const FxaaRun run = RunFxaa(VerticalSegment(), Strategy::DeferredQueue);
+  const MiniEngineRun run = RunMiniEngine(VerticalSegment(), Strategy::DeferredQueue);
   const std::uint64_t active = Sum(run, "fxaa-miniengine/pass2-h", &sim::LaneCounters::lanesActive) +
                                Sum(run, "fxaa-miniengine/pass2-v", &sim::LaneCounters::lanesActive);
   EXPECT_EQ(active % sim::kWaveLanes, 0u);
@@ -273,8 +273,8 @@ TEST(FxaaMiniEngineQueue, FrontItemsFromTheStartBackItemsFromTheEndPaddedToSixty
 // overflows and every pixel is processed under both strategies alike.
 TEST(FxaaMiniEngineQueue, ACheckerboardFillsTheQueueWithoutOverflowOrLoss) {
   const sim::Texture2D<glm::vec4> board = testing::GreyImage(128, 128, [](int x, int y) { return (x + y) % 2 ? 255 : 0; });
-  const FxaaRun queue = RunFxaa(board, Strategy::DeferredQueue);
-  const FxaaRun stencil = RunFxaa(board, Strategy::StencilCulled);
+  const MiniEngineRun queue = RunMiniEngine(board, Strategy::DeferredQueue);
+  const MiniEngineRun stencil = RunMiniEngine(board, Strategy::StencilCulled);
   EXPECT_EQ(queue.output.workItems, 128u * 128u);
   EXPECT_EQ(queue.output.paddingItems, 0u);
   EXPECT_EQ(Sum(queue, "fxaa-miniengine/pass1", &sim::LaneCounters::slotOverflow), 0u);
@@ -288,11 +288,11 @@ TEST(FxaaMiniEngineQueue, AScreenOnePixelWideOrHighLaunchesNothing) {
     const sim::Texture2D<glm::vec4> image =
         testing::GreyImage(size.x, size.y, [](int x, int y) { return (x * 7 + y * 13) % 2 ? 200 : 10; });
     for (const Strategy strategy : kAllStrategies) {
-      const FxaaRun run = RunFxaa(image, strategy);
+      const MiniEngineRun run = RunMiniEngine(image, strategy);
       EXPECT_TRUE(run.reports.empty()) << size.x << "x" << size.y;
       EXPECT_EQ(run.output.workItems, 0u);
       for (int y = 0; y < size.y; ++y) {
-        for (int x = 0; x < size.x; ++x) EXPECT_EQ(Red(run.output, x, y), Stored(image.At(x, y).x)) << x << "," << y;
+        for (int x = 0; x < size.x; ++x) EXPECT_EQ(Red(run.output, x, y), StoredR11G11B10(image.At(x, y).x)) << x << "," << y;
       }
     }
   }
@@ -304,7 +304,7 @@ TEST(FxaaMiniEngineQueue, AScreenOnePixelWideOrHighLaunchesNothing) {
 // slots: the refused reservations are counted (slots/overflow).
 TEST(FxaaMiniEngineQueue, QuadrantsOfPartialGroupsOverflowTheReferenceQueueSizeOnACheckerboard) {
   const sim::Texture2D<glm::vec4> board = testing::GreyImage(100, 100, [](int x, int y) { return (x + y) % 2 ? 255 : 0; });
-  const FxaaRun queue = RunFxaa(board, Strategy::DeferredQueue);
+  const MiniEngineRun queue = RunMiniEngine(board, Strategy::DeferredQueue);
   EXPECT_EQ(Sum(queue, "fxaa-miniengine/pass1", &sim::LaneCounters::slotOverflow), 56u * 56u + 2u * 56u * 50u - 3u * (100u * 100u / 4u + 128u));
 }
 
@@ -318,11 +318,11 @@ TEST(FxaaMiniEngineQueue, QuadrantsOfPartialGroupsOverflowTheReferenceQueueSizeO
 TEST(FxaaMiniEngineSeam, TheFirstQuadrantsSearchSeesTheUnwrittenLumaPastItsBorder) {
   const sim::Texture2D<glm::vec4> edge = testing::GreyImage(64, 64, [](int x, int) { return x >= 20 ? 255 : 0; });
   for (const Strategy strategy : kAllStrategies) {
-    const PassOutput out = RunFxaa(edge, strategy).output;
-    const float subpixOnly = Stored(1.0f + 16.0f / 254.0f * 0.5f * (0.0f - 1.0f));
+    const PassOutput out = RunMiniEngine(edge, strategy).output;
+    const float subpixOnly = StoredR11G11B10(1.0f + 16.0f / 254.0f * 0.5f * (0.0f - 1.0f));
     // Row 24: the luma rows 32 (the first quadrant's apron) and 33.. (unwritten): the sample at
     // 10.5 (rows 34, 35) is the first with both rows 0.
-    EXPECT_EQ(Red(out, 20, 24), Stored(1.0f + (0.5f - 10.5f / 33.0f) * (0.0f - 1.0f))) << StrategyName(strategy);
+    EXPECT_EQ(Red(out, 20, 24), StoredR11G11B10(1.0f + (0.5f - 10.5f / 33.0f) * (0.0f - 1.0f))) << StrategyName(strategy);
     EXPECT_EQ(Red(out, 20, 4), subpixOnly) << StrategyName(strategy);
     EXPECT_EQ(Red(out, 20, 40), subpixOnly) << StrategyName(strategy);
   }

@@ -58,7 +58,7 @@ FxaaRun RunFxaa(const sim::Texture2D<glm::vec4>& image, std::string_view spec = 
   return RunFxaa(image, ResolvePass(spec).settings, strategy);
 }
 
-const fxaa::StepTable& Table(int preset) {
+const fxaa::StepTable& StepTableFor(int preset) {
   const fxaa::StepTable* table = fxaa::FindStepTable(preset);
   if (table == nullptr) throw std::logic_error("no FXAA preset " + std::to_string(preset));
   return *table;
@@ -154,7 +154,7 @@ TEST(FxaaSearch, FindsBothEndsOfLinesAtTheDistancesTheStepTablesGive) {
   const std::vector<std::pair<int, int>> ends{{2, 1}, {1, 2}, {2, 3}, {3, 5}, {4, 8}, {6, 11}, {9, 14},
                                               {13, 17}, {19, 21}, {26, 30}, {40, 40}};
   for (const int preset : {10, 12, 20, 25, 29, 39}) {
-    const fxaa::StepTable& table = Table(preset);
+    const fxaa::StepTable& table = StepTableFor(preset);
     const PassSettings settings = ResolvePass("fxaa:preset=" + std::to_string(preset)).settings;
     for (const bool vertical : {false, true}) {
       for (const auto& [toN, toP] : ends) {
@@ -172,7 +172,7 @@ TEST(FxaaSearch, FindsBothEndsOfLinesAtTheDistancesTheStepTablesGive) {
 
 // The reach beyond which a line's end is never found: the sum of the table.
 TEST(FxaaSearch, ALineLongerThanThePresetsReachEndsAtTheFullReach) {
-  const fxaa::StepTable& table = Table(12);
+  const fxaa::StepTable& table = StepTableFor(12);
   EXPECT_EQ(ExpectedReach(table, 40), 1.0f + 1.5f + 2.0f + 4.0f + 12.0f);
   const FxaaRun run = RunFxaa(LineImage(false, 48, 40, 40));
   EXPECT_NEAR(run.Span(48, 8, 1), 20.5f, 1e-3);

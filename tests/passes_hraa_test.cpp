@@ -53,7 +53,7 @@ glm::vec2 SamplePosition(int x, int y, int k) {
           static_cast<float>(y) + 0.5f + static_cast<float>(offset.y) / 16.0f};
 }
 
-struct Frame {
+struct HraaFrame {
   sim::Texture2D<glm::vec4> colour;
   sim::Texture2D<glm::vec2> velocity;
   const raster::SamplePattern* pattern;
@@ -64,9 +64,9 @@ struct Frame {
   }
 };
 
-// Frame k: the scene at every pixel's flipquad-split sample (pixel centres when `centres`).
-Frame Render(int width, int height, int k, const Scene& scene, const Motion& motion = {}, bool centres = false) {
-  Frame frame{{"colour", width, height, 16}, {"velocity", width, height, 8}, centres ? nullptr : &FlipQuadSplit().At(k), k};
+// HraaFrame k: the scene at every pixel's flipquad-split sample (pixel centres when `centres`).
+HraaFrame RenderHraa(int width, int height, int k, const Scene& scene, const Motion& motion = {}, bool centres = false) {
+  HraaFrame frame{{"colour", width, height, 16}, {"velocity", width, height, 8}, centres ? nullptr : &FlipQuadSplit().At(k), k};
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const glm::vec2 at = centres ? glm::vec2(x + 0.5f, y + 0.5f) : SamplePosition(x, y, k);
@@ -78,8 +78,8 @@ Frame Render(int width, int height, int k, const Scene& scene, const Motion& mot
 }
 
 // What the renderer's RGBA8 sRGB target gives back for a linear value.
-float Stored(float linear) { return sim::Srgb8ToFloat(sim::FloatToSrgb8(linear)); }
-glm::vec3 Stored(const glm::vec3& c) { return {Stored(c.r), Stored(c.g), Stored(c.b)}; }
+float StoredSrgb8(float linear) { return sim::Srgb8ToFloat(sim::FloatToSrgb8(linear)); }
+glm::vec3 StoredSrgb8(const glm::vec3& c) { return {StoredSrgb8(c.r), StoredSrgb8(c.g), StoredSrgb8(c.b)}; }
 
 std::unique_ptr<Pass> MakePass(std::string_view spec) {
   const PassConfig config = ResolvePass(spec);
@@ -104,7 +104,7 @@ TEST(PassesHraa, TfqResolveAveragesTheFourFlipQuadPointsOfTwoFrames) {
   const auto a = [](int x, int y) { return glm::vec3(0.05f + 0.05f * static_cast<float>((x * 7 + y * 3) % 17), 0.3f, 0.1f * static_cast<float>(y % 5)); };
   const auto b = [](int x, int y) { return glm::vec3(0.9f - 0.04f * static_cast<float>((x * 5 + y * 11) % 19), 0.6f, 0.08f * static_cast<float>(x % 7)); };
   const auto image = [&](int k) {
-    Frame frame{{"colour", w, h, 16}, {"velocity", w, h, 8}, &FlipQuadSplit().At(k), k};
+    HraaFrame frame{{"colour", w, h, 16}, {"velocity", w, h, 8}, &FlipQuadSplit().At(k), k};
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) frame.colour.At(x, y) = glm::vec4(k % 2 == 0 ? a(x, y) : b(x, y), 1.0f);
     }
@@ -122,7 +122,7 @@ TEST(PassesHraa, TfqResolveAveragesTheFourFlipQuadPointsOfTwoFrames) {
         ASSERT_EQ(Validity(output, x, y), expectValidity) << k << " " << x << "," << y;
         if (k < 2) continue;
         const int right = std::min(x + 1, w - 1), below = std::min(y + 1, h - 1);
-        const glm::vec3 expected = 0.25f * (Stored(a(x, y)) + Stored(a(right, y)) + Stored(b(x, y)) + Stored(b(x, below)));
+        const glm::vec3 expected = 0.25f * (StoredSrgb8(a(x, y)) + StoredSrgb8(a(right, y)) + StoredSrgb8(b(x, y)) + StoredSrgb8(b(x, below)));
         for (int c = 0; c < 3; ++c) {
           ASSERT_NEAR(output.colour.At(x, y)[c], expected[c], 2e-3f * expected[c] + 1e-6f) << k << " " << x << "," << y;
         }
@@ -137,13 +137,13 @@ TEST(PassesHraa, APreviousFrameOfTheSamePhaseIsNoHistory) {
   const int w = 12, h = 10;
   sim::Machine machine = MakeMachine();
   const std::unique_ptr<Pass> pass = MakePass("tfq");
-  Frame first = Render(w, h, 0, StaticSceneForPhases);
+  HraaFrame first = RenderHraa(w, h, 0, StaticSceneForPhases);
   const PassOutput zero = pass->Run(machine, first.Inputs(), Strategy::StencilCulled);
   first.index = 1;  // frame 1 drawn with frame 0's pattern
   const PassOutput again = pass->Run(machine, first.Inputs(), Strategy::StencilCulled);
   EXPECT_EQ(Validity(again, 3, 3), static_cast<int>(hraa::TfqValidity::NoHistory));
   EXPECT_TRUE(CompareOutputs(zero, again).Identical());
-  const Frame second = Render(w, h, 1, StaticSceneForPhases);
+  const HraaFrame second = RenderHraa(w, h, 1, StaticSceneForPhases);
   EXPECT_EQ(Validity(pass->Run(machine, second.Inputs(), Strategy::StencilCulled), 3, 3),
             static_cast<int>(hraa::TfqValidity::ColourLimited));  // A then B: history, no N-2 yet
   first.index = 0;  // a new sequence
@@ -195,7 +195,7 @@ TEST(PassesHraa, AStaticSceneConvergesTowardTheSupersampledValue) {
   double oneSample = 0.0, tfqError = 0.0;
   std::vector<double> hraaToFlipQuad;
   for (int k = 0; k < 40; ++k) {
-    const Frame frame = Render(w, h, k, StaticScene);
+    const HraaFrame frame = RenderHraa(w, h, k, StaticScene);
     if (k == 0) oneSample = MeanAbs(frame.colour, truth);
     const PassOutput t = tfq->Run(machine, frame.Inputs(), Strategy::StencilCulled);
     const PassOutput o = hraa->Run(machine, frame.Inputs(), Strategy::StencilCulled);
@@ -216,15 +216,15 @@ TEST(PassesHraa, AStaticSceneConvergesTowardTheSupersampledValue) {
 
 constexpr float kBoxSpeed = 2.0f;  // px per frame, +x
 glm::vec3 Background(glm::vec2 p) { return {0.35f + 0.1f * std::sin(p.x / 6.0f), 0.4f, 0.3f + 0.1f * std::cos(p.y / 5.0f)}; }
-bool InBox(glm::vec2 p, int k) {
+bool InHraaBox(glm::vec2 p, int k) {
   const float x0 = 6.0f + kBoxSpeed * static_cast<float>(k);
   return p.x >= x0 && p.x < x0 + 10.0f && p.y >= 11.0f && p.y < 21.0f;
 }
-constexpr glm::vec3 kBoxColour{0.9f, 0.05f, 0.05f};
+constexpr glm::vec3 kHraaBoxColour{0.9f, 0.05f, 0.05f};
 
-Frame BoxFrame(int w, int h, int k) {
-  return Render(w, h, k, [k](glm::vec2 p) { return InBox(p, k) ? kBoxColour : Background(p); },
-                [k](glm::vec2 p) { return InBox(p, k) ? glm::vec2(kBoxSpeed, 0.0f) : glm::vec2(0.0f); });
+HraaFrame HraaBoxFrame(int w, int h, int k) {
+  return RenderHraa(w, h, k, [k](glm::vec2 p) { return InHraaBox(p, k) ? kHraaBoxColour : Background(p); },
+                [k](glm::vec2 p) { return InHraaBox(p, k) ? glm::vec2(kBoxSpeed, 0.0f) : glm::vec2(0.0f); });
 }
 
 // The pixels the box left in frame k: box in k - 1 at the pixel's sample, background now.
@@ -232,7 +232,7 @@ std::vector<glm::ivec2> Disoccluded(int w, int h, int k) {
   std::vector<glm::ivec2> pixels;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      if (InBox(SamplePosition(x, y, k - 1), k - 1) && !InBox(SamplePosition(x, y, k), k)) pixels.emplace_back(x, y);
+      if (InHraaBox(SamplePosition(x, y, k - 1), k - 1) && !InHraaBox(SamplePosition(x, y, k), k)) pixels.emplace_back(x, y);
     }
   }
   return pixels;
@@ -255,7 +255,7 @@ TEST(PassesHraa, MotionFlowRejectsADisoccludedRegion) {
   double ghost = 0.0;  // mean |red - background| without the tests, from frame 2 (N-2 exists)
   int checked = 0, ghosted = 0;
   for (int k = 0; k < 8; ++k) {
-    const Frame frame = BoxFrame(w, h, k);
+    const HraaFrame frame = HraaBoxFrame(w, h, k);
     const PassOutput t = tfq->Run(machine, frame.Inputs(), Strategy::StencilCulled);
     const PassOutput o = hraa->Run(machine, frame.Inputs(), Strategy::StencilCulled);
     const PassOutput u = unchecked->Run(machine, frame.Inputs(), Strategy::StencilCulled);
@@ -298,7 +298,7 @@ TEST(PassesHraa, ColourFlowLimitsAChangedSample) {
   const std::unique_ptr<Pass> unchecked = MakePass("tfq:colour_threshold=1");
   std::optional<PassOutput> limited, accepted;
   for (int k = 0; k < 5; ++k) {
-    const Frame frame = Render(w, h, k, scene(k));
+    const HraaFrame frame = RenderHraa(w, h, k, scene(k));
     limited = tfq->Run(machine, frame.Inputs(), Strategy::StencilCulled);
     accepted = unchecked->Run(machine, frame.Inputs(), Strategy::StencilCulled);
   }
@@ -307,7 +307,7 @@ TEST(PassesHraa, ColourFlowLimitsAChangedSample) {
       EXPECT_EQ(Validity(*limited, x, y), static_cast<int>(hraa::TfqValidity::ColourLimited)) << x << "," << y;
       EXPECT_NEAR(limited->colour.At(x, y).r, 1.0f, 1e-3f) << x << "," << y;
       EXPECT_EQ(Validity(*accepted, x, y), static_cast<int>(hraa::TfqValidity::Accepted)) << x << "," << y;
-      EXPECT_NEAR(accepted->colour.At(x, y).r, 0.5f * (1.0f + Stored(0.2f)), 1e-3f) << x << "," << y;
+      EXPECT_NEAR(accepted->colour.At(x, y).r, 0.5f * (1.0f + StoredSrgb8(0.2f)), 1e-3f) << x << "," << y;
     }
   }
   EXPECT_EQ(Validity(*limited, 2, 2), static_cast<int>(hraa::TfqValidity::Accepted));  // unchanged there
@@ -321,7 +321,7 @@ TEST(PassesHraa, UnsharpMaskIsTheHalfPixelBoxSubtractedFromTheResolve) {
   const std::unique_ptr<Pass> plain = MakePass("tfq");
   const std::unique_ptr<Pass> sharp = MakePass("tfq:unsharp=0.8");
   for (int k = 0; k < 3; ++k) {
-    const Frame frame = Render(w, h, k, StaticScene);
+    const HraaFrame frame = RenderHraa(w, h, k, StaticScene);
     const PassOutput p = plain->Run(machine, frame.Inputs(), Strategy::StencilCulled);
     const PassOutput s = sharp->Run(machine, frame.Inputs(), Strategy::StencilCulled);
     const auto at = [&](int x, int y) { return p.colour.At(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1)).r; };
@@ -354,7 +354,7 @@ TEST(PassesHraa, AcceptanceMetricWeighsTheHistoryByItsDistanceFromTheFreshWindow
     second.push_back(glm::clamp(first.back() + glm::vec3(static_cast<float>(rng.Uniform(-step, step))), 0.0f, 1.0f));
   }
   const auto frame = [&](int k, const std::vector<glm::vec3>& colours) {
-    Frame f{{"colour", w, h, 16}, {"velocity", w, h, 8}, nullptr, k};
+    HraaFrame f{{"colour", w, h, 16}, {"velocity", w, h, 8}, nullptr, k};
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) f.colour.At(x, y) = glm::vec4(colours[static_cast<std::size_t>(y * w + x)], 1.0f);
     }
@@ -367,7 +367,7 @@ TEST(PassesHraa, AcceptanceMetricWeighsTheHistoryByItsDistanceFromTheFreshWindow
   const PassOutput output = pass->Run(machine, frame(1, second).Inputs(), Strategy::StencilCulled);
   const PassLayer& feedback = testing::LayerNamed(output, "feedback");
   const auto stored = [&](const std::vector<glm::vec3>& colours, int x, int y) {
-    return Stored(colours[static_cast<std::size_t>(std::clamp(y, 0, h - 1) * w + std::clamp(x, 0, w - 1))]);
+    return StoredSrgb8(colours[static_cast<std::size_t>(std::clamp(y, 0, h - 1) * w + std::clamp(x, 0, w - 1))]);
   };
   int inside = 0, outside = 0;
   for (int y = 0; y < h; ++y) {
@@ -428,7 +428,7 @@ sim::Texture2D<glm::vec4> RandomHistory(int w, int h) {
   return history;
 }
 
-constexpr hraa::Resampling kModes[] = {hraa::Resampling::Bilinear, hraa::Resampling::MacCormack, hraa::Resampling::Bfecc,
+constexpr hraa::Resampling kHraaModes[] = {hraa::Resampling::Bilinear, hraa::Resampling::MacCormack, hraa::Resampling::Bfecc,
                                        hraa::Resampling::GpuBfecc};
 
 // With a whole-pixel motion every bilinear tap lands on a texel centre, the back-and-forth error
@@ -438,7 +438,7 @@ TEST(PassesHraa, EveryResamplingIsExactForIntegerShifts) {
   const sim::Texture2D<glm::vec4> history = RandomHistory(w, h);
   for (const glm::vec2 shift : {glm::vec2(3, -2), glm::vec2(-1, 4), glm::vec2(0, 0)}) {
     sim::Texture2D<glm::vec2> velocity("velocity", w, h, sim::Format::RG16Float, shift);
-    for (const hraa::Resampling mode : kModes) {
+    for (const hraa::Resampling mode : kHraaModes) {
       const sim::Texture2D<glm::vec4> out = Resampled(mode, history, velocity);
       for (int y = 5; y < h - 5; ++y) {
         for (int x = 5; x < w - 5; ++x) {
@@ -495,7 +495,7 @@ Retained RunExperiment(int resample) {
   for (int k = 0; k < kExperimentFrames; ++k) {
     const glm::vec2 v = k == 0 ? glm::vec2(0.0f) : kSpeeds[static_cast<std::size_t>(k) % std::size(kSpeeds)];
     shift += v;
-    const Frame frame = Render(w, h, k, [&](glm::vec2 p) { return glm::vec3(Grating(p - shift)); },
+    const HraaFrame frame = RenderHraa(w, h, k, [&](glm::vec2 p) { return glm::vec3(Grating(p - shift)); },
                                [&](glm::vec2) { return v; }, true);
     output = pass->Run(machine, frame.Inputs(), Strategy::StencilCulled);
   }
@@ -540,19 +540,19 @@ TEST(PassesHraa, BfeccDiffusesLessThanBilinearOverThirtyFramesOfSubPixelMotion) 
 
 // ---- determinism ----------------------------------------------------------------------------
 
-struct SequenceRun {
+struct HraaSequenceRun {
   std::vector<PassOutput> outputs;
   std::vector<std::vector<sim::DispatchReport>> reports;
 };
 
-SequenceRun RunSequence(std::string_view spec, int threads) {
+HraaSequenceRun RunHraaSequence(std::string_view spec, int threads) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   const int w = 70, h = 45;  // partial quads, tiles and waves
   sim::Machine machine = MakeMachine();
   const std::unique_ptr<Pass> pass = MakePass(spec);
-  SequenceRun run;
+  HraaSequenceRun run;
   for (int k = 0; k < 6; ++k) {
-    run.outputs.push_back(pass->Run(machine, BoxFrame(w, h, k).Inputs(), Strategy::StencilCulled));
+    run.outputs.push_back(pass->Run(machine, HraaBoxFrame(w, h, k).Inputs(), Strategy::StencilCulled));
     run.reports.push_back(machine.Reports());
     machine.ClearReports();
   }
@@ -561,7 +561,7 @@ SequenceRun RunSequence(std::string_view spec, int threads) {
 
 TEST(PassesHraa, OneAndTwoThreadsGiveIdenticalSequences) {
   for (const std::string_view spec : {"hraa:unsharp=0.5", "hraa:resample=1", "hraa:resample=2", "hraa:preset=taa,resample=0", "tfq"}) {
-    const SequenceRun one = RunSequence(spec, 1), two = RunSequence(spec, 2);
+    const HraaSequenceRun one = RunHraaSequence(spec, 1), two = RunHraaSequence(spec, 2);
     for (std::size_t k = 0; k < one.outputs.size(); ++k) {
       EXPECT_TRUE(CompareOutputs(one.outputs[k], two.outputs[k]).Identical()) << spec << " frame " << k;
       sim::testing::ExpectSameReports(one.reports[k], two.reports[k]);

@@ -1,4 +1,4 @@
-// Image-quality metrics on synthetic pairs whose answers are known: identical images, constant
+// MetricsImage-quality metrics on synthetic pairs whose answers are known: identical images, constant
 // offsets built in the encoded domain (closed-form PSNR and SSIM), a step edge moved by one pixel,
 // flat colour patches; FLIP against a slow 2-D reference; argument checks and determinism.
 
@@ -12,6 +12,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,8 +27,8 @@
 namespace passes {
 namespace {
 
-struct Image {
-  Image(int w, int h, glm::vec4 fill = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f))
+struct MetricsImage {
+  MetricsImage(int w, int h, glm::vec4 fill = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f))
       : width(w), height(h), pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
   glm::vec4& At(int x, int y) { return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]; }
   ImageView View() const { return ImageView{pixels, width, height}; }
@@ -46,9 +47,9 @@ glm::vec4 EncodedGrey(double encoded) {
   return glm::vec4(v, v, v, 1.0f);
 }
 
-Image RandomImage(int w, int h, std::uint64_t seed) {
+MetricsImage RandomMetricsImage(int w, int h, std::uint64_t seed) {
   raster::testing::Random rng(seed);
-  Image image(w, h);
+  MetricsImage image(w, h);
   for (glm::vec4& p : image.pixels) {
     p = glm::vec4(static_cast<float>(rng.Uniform(0, 1)), static_cast<float>(rng.Uniform(0, 1)),
                   static_cast<float>(rng.Uniform(0, 1)), 1.0f);
@@ -57,8 +58,8 @@ Image RandomImage(int w, int h, std::uint64_t seed) {
 }
 
 // A vertical step: dark left of column edgeX, light from it on.
-Image Step(int w, int h, int edgeX) {
-  Image image(w, h, glm::vec4(0.8f, 0.7f, 0.6f, 1.0f));
+MetricsImage Step(int w, int h, int edgeX) {
+  MetricsImage image(w, h, glm::vec4(0.8f, 0.7f, 0.6f, 1.0f));
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < edgeX; ++x) image.At(x, y) = glm::vec4(0.05f, 0.1f, 0.15f, 1.0f);
   }
@@ -79,7 +80,7 @@ TEST(PassesMetrics, PixelsPerDegreeForTheDefaultViewingCondition) {
 }
 
 TEST(PassesMetrics, IdenticalImagesScorePerfectly) {
-  const Image a = RandomImage(61, 37, 3);
+  const MetricsImage a = RandomMetricsImage(61, 37, 3);
   const std::vector<float> mask = ColumnMask(a.width, a.height, 10, 12);
   const QualityResult r = ScoreWithMaps(a.View(), a.View(), mask);
   EXPECT_EQ(r.scores.psnr, std::numeric_limits<double>::infinity());
@@ -100,7 +101,7 @@ TEST(PassesMetrics, PsnrOfAConstantOffsetInTheEncodedDomainIsClosedForm) {
   const int w = 40, h = 30;
   raster::testing::Random rng(5);
   for (const double d : {0.01, 0.05, 0.2}) {
-    Image reference(w, h), test(w, h);
+    MetricsImage reference(w, h), test(w, h);
     for (std::size_t i = 0; i < reference.pixels.size(); ++i) {
       const double r = rng.Uniform(0.05, 0.7), g = rng.Uniform(0.05, 0.7), b = rng.Uniform(0.05, 0.7);
       reference.pixels[i] = glm::vec4(DecodeSrgb(r), DecodeSrgb(g), DecodeSrgb(b), 1.0f);
@@ -114,7 +115,7 @@ TEST(PassesMetrics, MaskedPsnrCountsOnlyTheMaskedPixels) {
   // Offset d on columns 10..14 only: the mask over them sees MSE d^2, the whole image d^2 * 5/40.
   const int w = 40, h = 8;
   const double d = 0.1;
-  Image reference(w, h, EncodedGrey(0.3)), test(w, h, EncodedGrey(0.3));
+  MetricsImage reference(w, h, EncodedGrey(0.3)), test(w, h, EncodedGrey(0.3));
   for (int y = 0; y < h; ++y) {
     for (int x = 10; x <= 14; ++x) test.At(x, y) = EncodedGrey(0.3 + d);
   }
@@ -127,7 +128,7 @@ TEST(PassesMetrics, SsimOfAConstantOffsetOnAFlatImageIsTheLuminanceTerm) {
   // Flat images have no variance, so SSIM reduces to (2 mx my + C1) / (mx^2 + my^2 + C1); the
   // Rec. 709 luma of an encoded grey is the grey itself.
   const double mx = 0.55, my = 0.4, c1 = 0.01 * 0.01;
-  const Image test(23, 17, EncodedGrey(mx)), reference(23, 17, EncodedGrey(my));
+  const MetricsImage test(23, 17, EncodedGrey(mx)), reference(23, 17, EncodedGrey(my));
   const MetricMap ssim = Ssim(test.View(), reference.View());
   const double expected = (2.0 * mx * my + c1) / (mx * mx + my * my + c1);
   EXPECT_NEAR(ssim.mean, expected, 1e-6);
@@ -136,7 +137,7 @@ TEST(PassesMetrics, SsimOfAConstantOffsetOnAFlatImageIsTheLuminanceTerm) {
 
 TEST(PassesMetrics, AShiftedEdgeConcentratesTheErrorAtTheEdge) {
   const int w = 96, h = 40, edgeX = 48;
-  const Image reference = Step(w, h, edgeX), test = Step(w, h, edgeX + 1);  // column 48 changes colour
+  const MetricsImage reference = Step(w, h, edgeX), test = Step(w, h, edgeX + 1);  // column 48 changes colour
   const std::vector<float> edges = ColumnMask(w, h, edgeX - 1, edgeX + 1);
   const QualityResult r = ScoreWithMaps(test.View(), reference.View(), edges);
 
@@ -168,10 +169,10 @@ TEST(PassesMetrics, AShiftedEdgeConcentratesTheErrorAtTheEdge) {
 }
 
 TEST(PassesMetrics, FlipGrowsWithTheColourDifferenceOfFlatPatches) {
-  const Image reference(32, 32, glm::vec4(0.3f, 0.3f, 0.3f, 1.0f));
+  const MetricsImage reference(32, 32, glm::vec4(0.3f, 0.3f, 0.3f, 1.0f));
   double previous = 0.0;
   for (const float delta : {0.005f, 0.01f, 0.02f, 0.05f, 0.1f, 0.2f, 0.4f, 0.7f}) {
-    const Image test(32, 32, glm::vec4(0.3f + delta, 0.3f, 0.3f - 0.4f * delta, 1.0f));
+    const MetricsImage test(32, 32, glm::vec4(0.3f + delta, 0.3f, 0.3f - 0.4f * delta, 1.0f));
     const double flip = Flip(test.View(), reference.View()).mean;
     EXPECT_GT(flip, previous) << "delta " << delta;
     EXPECT_LE(flip, 1.0);
@@ -184,11 +185,11 @@ TEST(PassesMetrics, FlipOfBlackAgainstWhiteAndOfGreenAgainstBlue) {
   // white is HyAB 100 -> 100^0.7 = 25.1, above pc*cmax = 16.5 (cmax = 203.3^0.7 from Hunt-adjusted
   // green to blue), so 0.95 + (25.1 - 16.5) / (41.3 - 16.5) * 0.05 = 0.9674; green against blue is
   // the largest difference and maps to 1.
-  const Image black(24, 24, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)), white(24, 24, glm::vec4(1.0f));
+  const MetricsImage black(24, 24, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)), white(24, 24, glm::vec4(1.0f));
   const MetricMap bw = Flip(black.View(), white.View());
   EXPECT_NEAR(bw.mean, 0.96738, 2e-5);
   for (const float v : bw.map) ASSERT_EQ(v, bw.map.front());
-  const Image green(24, 24, glm::vec4(0.0f, 1.0f, 0.0f, 1.0f)), blue(24, 24, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+  const MetricsImage green(24, 24, glm::vec4(0.0f, 1.0f, 0.0f, 1.0f)), blue(24, 24, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
   const double gb = Flip(green.View(), blue.View()).mean;
   EXPECT_NEAR(gb, 1.0, 1e-4);
   EXPECT_LE(bw.mean, gb);
@@ -199,7 +200,6 @@ TEST(PassesMetrics, FlipOfBlackAgainstWhiteAndOfGreenAgainstBlue) {
 namespace slow {
 
 using Rgb = glm::dvec3;
-constexpr double kPi = 3.14159265358979323846;
 
 // Linear sRGB to XYZ (IEC 61966-2-1 primaries, D65), written row by row.
 glm::dmat3 RgbToXyz() {
@@ -255,7 +255,7 @@ Kernel2d Csf(double a1, double b1, double a2, double b2, int r, double ppd) {
     for (int dx = -r; dx <= r; ++dx) {
       const double d2 = (dx * dx + dy * dy) / (ppd * ppd);
       double& v = k[static_cast<std::size_t>(dy + r)][static_cast<std::size_t>(dx + r)];
-      v = a1 * std::sqrt(kPi / b1) * std::exp(-kPi * kPi * d2 / b1) + a2 * std::sqrt(kPi / b2) * std::exp(-kPi * kPi * d2 / b2);
+      v = a1 * std::sqrt(std::numbers::pi / b1) * std::exp(-std::numbers::pi * std::numbers::pi * d2 / b1) + a2 * std::sqrt(std::numbers::pi / b2) * std::exp(-std::numbers::pi * std::numbers::pi * d2 / b2);
       sum += v;
     }
   }
@@ -285,16 +285,16 @@ Kernel2d Feature(bool point, double sigma, bool transpose) {
   return k;
 }
 
-std::vector<double> Flip(const Image& test, const Image& reference) {
+std::vector<double> Flip(const MetricsImage& test, const MetricsImage& reference) {
   const int w = test.width, h = test.height;
-  const double ppd = 0.7 * 3840.0 / 0.7 * kPi / 180.0;
-  const int r = static_cast<int>(std::ceil(3.0 * std::sqrt(0.04 / (2.0 * kPi * kPi)) * ppd));
+  const double ppd = 0.7 * 3840.0 / 0.7 * std::numbers::pi / 180.0;
+  const int r = static_cast<int>(std::ceil(3.0 * std::sqrt(0.04 / (2.0 * std::numbers::pi * std::numbers::pi)) * ppd));
   const double sigma = 0.5 * 0.082 * ppd;
   struct Prepared {
     std::vector<Rgb> lab;
     std::vector<double> edge, point;
   };
-  auto prepare = [&](const Image& image) {
+  auto prepare = [&](const MetricsImage& image) {
     std::array<std::vector<double>, 3> channels;
     std::vector<double> luminance;
     for (const glm::vec4& p : image.pixels) {
@@ -334,8 +334,8 @@ std::vector<double> Flip(const Image& test, const Image& reference) {
 TEST(PassesMetrics, FlipMatchesASlowTwoDimensionalReference) {
   // Random pixels with half of them changed: strong colour and feature differences everywhere,
   // and an image smaller than the filters so every pixel sees the clamped borders.
-  const Image reference = RandomImage(23, 19, 21);
-  Image test = reference;
+  const MetricsImage reference = RandomMetricsImage(23, 19, 21);
+  MetricsImage test = reference;
   raster::testing::Random rng(22);
   for (glm::vec4& p : test.pixels) {
     if (rng.Uniform(0, 1) < 0.5) p = glm::vec4(static_cast<float>(rng.Uniform(0, 1)), static_cast<float>(rng.Uniform(0, 1)), static_cast<float>(rng.Uniform(0, 1)), 1.0f);
@@ -346,7 +346,7 @@ TEST(PassesMetrics, FlipMatchesASlowTwoDimensionalReference) {
 }
 
 TEST(PassesMetrics, AMaskThatSelectsNothingIsAnError) {
-  const Image a = RandomImage(16, 8, 1), b = RandomImage(16, 8, 2);
+  const MetricsImage a = RandomMetricsImage(16, 8, 1), b = RandomMetricsImage(16, 8, 2);
   const std::vector<float> none(16 * 8, 0.0f);
   for (const auto& call : std::vector<std::function<void()>>{
            [&] { (void)Psnr(a.View(), b.View(), none); },
@@ -362,7 +362,7 @@ TEST(PassesMetrics, AMaskThatSelectsNothingIsAnError) {
 }
 
 TEST(PassesMetrics, MismatchedSizesAreOneLineErrors) {
-  const Image a = RandomImage(16, 8, 1), b = RandomImage(8, 16, 2);
+  const MetricsImage a = RandomMetricsImage(16, 8, 1), b = RandomMetricsImage(8, 16, 2);
   const std::vector<float> mask(16 * 8, 1.0f);
   for (const auto& call : std::vector<std::function<void()>>{
            [&] { (void)Psnr(a.View(), b.View()); }, [&] { (void)Ssim(a.View(), b.View()); },
@@ -388,11 +388,11 @@ TEST(PassesMetrics, MismatchedSizesAreOneLineErrors) {
 // computed from the two images, bit for bit, and a size mismatch is still a one-line error.
 TEST(PassesMetrics, APreparedReferenceScoresLikeTheReferenceImage) {
   const int w = 97, h = 61;
-  const Image reference = RandomImage(w, h, 11);
+  const MetricsImage reference = RandomMetricsImage(w, h, 11);
   const ScoringReference prepared(reference.View());
   const std::vector<float> edges = ColumnMask(w, h, 20, 30);
   for (const std::uint64_t seed : {12u, 13u, 14u}) {
-    Image test = reference;
+    MetricsImage test = reference;
     raster::testing::Random rng(seed);
     for (glm::vec4& p : test.pixels) p += glm::vec4(static_cast<float>(rng.Uniform(-0.1, 0.1)));
     const QualityResult scored = ScoreWithMaps(test.View(), prepared, edges);
@@ -404,7 +404,7 @@ TEST(PassesMetrics, APreparedReferenceScoresLikeTheReferenceImage) {
     EXPECT_EQ(scored.scores.edgeFlip, MaskedMean(scored.maps.flip, edges)) << seed;
     EXPECT_GT(scored.scores.flip, 0.0) << seed;
   }
-  const Image other = RandomImage(w + 1, h, 15);
+  const MetricsImage other = RandomMetricsImage(w + 1, h, 15);
   try {
     (void)ScoreWithMaps(other.View(), prepared, std::vector<float>(static_cast<std::size_t>((w + 1) * h), 1.0f));
     ADD_FAILURE() << "expected std::invalid_argument";
@@ -415,7 +415,7 @@ TEST(PassesMetrics, APreparedReferenceScoresLikeTheReferenceImage) {
 
 TEST(PassesMetrics, MapsAreBitIdenticalForOneAndTwoThreads) {
   const int w = 203, h = 117;
-  Image reference = RandomImage(w, h, 7), test = reference;
+  MetricsImage reference = RandomMetricsImage(w, h, 7), test = reference;
   raster::testing::Random rng(8);
   for (glm::vec4& p : test.pixels) p += glm::vec4(static_cast<float>(rng.Uniform(-0.05, 0.05)));
   const std::vector<float> edges = ColumnMask(w, h, 50, 60);

@@ -28,7 +28,7 @@ namespace {
 using testing::Codes;
 using testing::GreyImage;
 
-constexpr int kDark = 40, kWhite = 221;
+constexpr int kMlaaDark = 40, kMlaaWhite = 221;
 
 struct MlaaRun {
   PassOutput output;
@@ -202,7 +202,7 @@ TEST(MlaaBlend, LinearBlendMixesDecodedValuesInsteadOfTheGammaCodes) {
 TEST(MlaaShapes, AnLBlendsTheHalfNearItsTurningEnd) {
   // Dark below row 5 from x = 4 to the right border: a line of 12 turning down at its left end,
   // open at the border.
-  const Codes code = [](int x, int y) { return x >= 4 && y >= 5 ? kDark : kWhite; };
+  const Codes code = [](int x, int y) { return x >= 4 && y >= 5 ? kMlaaDark : kMlaaWhite; };
   const auto image = GreyImage(16, 10, code);
   const MlaaRun run = RunMlaa("mlaa", image);
   Weights expected;
@@ -215,7 +215,7 @@ TEST(MlaaShapes, AZBlendsBothHalvesOnOppositeSides) {
   // A staircase: dark from row 6 left of x = 4, from row 5 for x in [4, 12), from row 4 after.
   // The line on the row 4|5 boundary (length 8) turns down at x = 4 and up at x = 12: a Z. The
   // steps' lines of length 4 are L shapes.
-  const Codes code = [](int x, int y) { return y >= (x < 4 ? 6 : x < 12 ? 5 : 4) ? kDark : kWhite; };
+  const Codes code = [](int x, int y) { return y >= (x < 4 ? 6 : x < 12 ? 5 : 4) ? kMlaaDark : kMlaaWhite; };
   const auto image = GreyImage(16, 10, code);
   const MlaaRun run = RunMlaa("mlaa", image);
   Weights expected;
@@ -234,7 +234,7 @@ TEST(MlaaShapes, AZBlendsBothHalvesOnOppositeSides) {
 TEST(MlaaShapes, AUBlendsBothHalvesOnOneSideAndAnOddCentreByTwoTriangles) {
   // Dark from row 5, and from row 4 on x in [4, 11): a plateau of 7 whose line turns down at both
   // ends. Its neighbours on the row 4|5 boundary are L shapes of 4 and 5 turning up.
-  const Codes code = [](int x, int y) { return y >= 5 || (x >= 4 && x < 11 && y >= 4) ? kDark : kWhite; };
+  const Codes code = [](int x, int y) { return y >= 5 || (x >= 4 && x < 11 && y >= 4) ? kMlaaDark : kMlaaWhite; };
   const auto image = GreyImage(16, 10, code);
   const MlaaRun run = RunMlaa("mlaa", image);
   Weights expected;
@@ -255,7 +255,7 @@ TEST(MlaaShapes, AUBlendsBothHalvesOnOneSideAndAnOddCentreByTwoTriangles) {
 TEST(MlaaShapes, TheSearchLimitLeavesAnEndOpen) {
   // The L of AnLBlendsTheHalfNearItsTurningEnd traced 4 px per side: from x = 4 the line seems
   // to be 1 + 4 long with an open right end, from x = 5 it seems 2 + 4 long.
-  const auto image = GreyImage(16, 10, [](int x, int y) { return x >= 4 && y >= 5 ? kDark : kWhite; });
+  const auto image = GreyImage(16, 10, [](int x, int y) { return x >= 4 && y >= 5 ? kMlaaDark : kMlaaWhite; });
   const MlaaRun run = RunMlaa("mlaa:max_search=4", image);
   EXPECT_NEAR(run.At("weights-h", 4, 5, 0), Turning(5, 0), 1e-3);
   EXPECT_NEAR(run.At("weights-h", 5, 5, 0), Turning(6, 1), 1e-3);

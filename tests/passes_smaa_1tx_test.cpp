@@ -43,17 +43,17 @@ TEST(SmaaOneTx, TheFormulaMatchesHandComputedValues) {
       << "w_k = 0.5: frames = 4";
 }
 
-struct SequenceRun {
+struct Smaa1txSequenceRun {
   std::vector<PassOutput> outputs;
   std::vector<sim::DispatchReport> reports;
 };
 
-SequenceRun RunSequence(const std::vector<sim::Texture2D<glm::vec4>>& frames, Strategy strategy, int threads = 2) {
+Smaa1txSequenceRun Run1txSequence(const std::vector<sim::Texture2D<glm::vec4>>& frames, Strategy strategy, int threads = 2) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   const std::unique_ptr<Pass> pass = ResolvePass("smaa-1tx").Make();
   sim::Texture2D<glm::vec2> still("velocity", frames.front().Width(), frames.front().Height());
-  SequenceRun run;
+  Smaa1txSequenceRun run;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     run.outputs.push_back(pass->Run(
         machine, {.colour = &frames[k], .velocity = &still, .frameIndex = static_cast<int>(k)}, strategy));
@@ -63,7 +63,7 @@ SequenceRun RunSequence(const std::vector<sim::Texture2D<glm::vec4>>& frames, St
 }
 
 std::vector<PassOutput> RunFrames(const std::vector<sim::Texture2D<glm::vec4>>& frames, Strategy strategy) {
-  return RunSequence(frames, strategy).outputs;
+  return Run1txSequence(frames, strategy).outputs;
 }
 
 // Frame 0 uniform code 100; frame 1 the same with one pixel at 120 (below SMAA's threshold, so SMAA
@@ -105,7 +105,7 @@ TEST(SmaaOneTx, StrategiesGiveIdenticalImagesOverASequence) {
 TEST(SmaaOneTx, OneAndTwoThreadsGiveIdenticalImagesAndCountersOverASequence) {
   const std::vector<sim::Texture2D<glm::vec4>> frames = MovingStripes();
   for (const Strategy strategy : kAllStrategies) {
-    const SequenceRun one = RunSequence(frames, strategy, 1), two = RunSequence(frames, strategy, 2);
+    const Smaa1txSequenceRun one = Run1txSequence(frames, strategy, 1), two = Run1txSequence(frames, strategy, 2);
     for (std::size_t k = 0; k < frames.size(); ++k) {
       EXPECT_TRUE(CompareOutputs(one.outputs[k], two.outputs[k]).Identical()) << StrategyName(strategy) << " " << k;
     }

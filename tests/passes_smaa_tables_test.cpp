@@ -44,7 +44,7 @@ int Mirror(int p) {
   return (p & kLeftDown ? kRightDown : 0) | (p & kRightDown ? kLeftDown : 0) | (p & kLeftUp ? kRightUp : 0) |
          (p & kRightUp ? kLeftUp : 0);
 }
-int Flip(int p) {
+int FlipVertical(int p) {
   return (p & kLeftDown ? kLeftUp : 0) | (p & kLeftUp ? kLeftDown : 0) | (p & kRightDown ? kRightUp : 0) |
          (p & kRightUp ? kRightDown : 0);
 }
@@ -151,10 +151,10 @@ TEST(PassesSmaaTables, OrthoFlippedPatternWithNegatedOffsetSwapsTheChannels) {
       for (int i = 0; i < kOrthoSize; ++i) {
         for (int j = 0; j < kOrthoSize; ++j) {
           const AreaPair a = OrthoArea(pattern, i * i, j * j, OrthoSubsampleOffset(stripe));
-          const AreaPair f = OrthoArea(Flip(pattern), i * i, j * j, OrthoSubsampleOffset(kOpposite[stripe]));
+          const AreaPair f = OrthoArea(FlipVertical(pattern), i * i, j * j, OrthoSubsampleOffset(kOpposite[stripe]));
           ASSERT_DOUBLE_EQ(a.r, f.g) << pattern << " " << stripe << " " << i << " " << j;
           ASSERT_DOUBLE_EQ(a.g, f.r) << pattern << " " << stripe << " " << i << " " << j;
-          const Texel t = OrthoTexel(pattern, stripe, i, j), ft = OrthoTexel(Flip(pattern), kOpposite[stripe], i, j);
+          const Texel t = OrthoTexel(pattern, stripe, i, j), ft = OrthoTexel(FlipVertical(pattern), kOpposite[stripe], i, j);
           ASSERT_EQ(AreaTexel(t.x, t.y).r, AreaTexel(ft.x, ft.y).g);
           ASSERT_EQ(AreaTexel(t.x, t.y).g, AreaTexel(ft.x, ft.y).r);
         }

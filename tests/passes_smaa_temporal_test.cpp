@@ -49,17 +49,17 @@ SyntheticFrame MakeFrame(int width, int height, const Codes& code, const std::fu
   return frame;
 }
 
-struct SequenceRun {
+struct T2xSequenceRun {
   std::vector<PassOutput> outputs;
   std::vector<sim::DispatchReport> reports;
 };
 
 // Runs `frames` frames through one instance of `spec`.
-SequenceRun RunSequence(std::string_view spec, int frames, const FrameMaker& make, Strategy strategy, int threads = 2) {
+T2xSequenceRun RunT2xSequence(std::string_view spec, int frames, const FrameMaker& make, Strategy strategy, int threads = 2) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   const std::unique_ptr<Pass> pass = ResolvePass(spec).Make();
-  SequenceRun run;
+  T2xSequenceRun run;
   for (int k = 0; k < frames; ++k) {
     const SyntheticFrame frame = make(k);
     run.outputs.push_back(pass->Run(machine, {.colour = &frame.colour, .velocity = &frame.velocity, .frameIndex = k},
@@ -80,7 +80,7 @@ int SmoothTexture(int x, int y) {
 }
 
 // A moving box over a checkerboard, with the box's velocity: edges everywhere, a disocclusion.
-SyntheticFrame MovingBox(int frame) {
+SyntheticFrame T2xMovingBox(int frame) {
   constexpr int kStep = 3;
   const auto inBox = [frame](int x, int y) { return x >= 6 + kStep * frame && x < 18 + kStep * frame && y >= 10 && y < 24; };
   return MakeFrame(
@@ -124,7 +124,7 @@ sim::Texture2D<glm::vec4> SlantedEdge(int frame) {
 }
 
 TEST(SmaaT2x, EachFrameRunsSmaa1xWithItsFramesSubsampleIndices) {
-  const SequenceRun run = RunSequence("smaa-t2x", 2, [](int k) { return MakeFrame(32, 32, [&](int x, int y) {
+  const T2xSequenceRun run = RunT2xSequence("smaa-t2x", 2, [](int k) { return MakeFrame(32, 32, [&](int x, int y) {
     return Code(SlantedEdge(k), x, y); }, [](int, int) { return glm::vec2(0); }); }, Strategy::DeferredQueue);
   int differing = 0;
   for (int k = 0; k < 2; ++k) {
@@ -176,7 +176,7 @@ TEST(SmaaT2xResolve, TheOutputBlendsWithTheHandComputedWeight) {
   const double previous = static_cast<double>(sim::Srgb8ToFloat(kFirst));
   const int expected = sim::FloatToSrgb8(static_cast<float>(current + w * (previous - current)));
   for (const char* spec : {"smaa-t2x", "smaa-t2x:reprojection=0"}) {
-    const SequenceRun run = RunSequence(spec, 2, flat, Strategy::StencilCulled);
+    const T2xSequenceRun run = RunT2xSequence(spec, 2, flat, Strategy::StencilCulled);
     const int average = sim::FloatToSrgb8(static_cast<float>(0.5 * (current + previous)));
     ASSERT_NE(expected, average);
     const bool reprojection = std::string_view(spec) == "smaa-t2x";
@@ -191,7 +191,7 @@ TEST(SmaaT2xResolve, TheOutputBlendsWithTheHandComputedWeight) {
 TEST(SmaaT2x, AStaticSceneConvergesToTheAverageOfTheTwoFramesSmaaOutputs) {
   const sim::Texture2D<glm::vec4> even = Smaa1xWith(SlantedEdge(0), smaa::T2xSubsampleIndices(0));
   const sim::Texture2D<glm::vec4> odd = Smaa1xWith(SlantedEdge(1), smaa::T2xSubsampleIndices(1));
-  const SequenceRun run = RunSequence("smaa-t2x", 4, [](int k) { return MakeFrame(32, 32, [&](int x, int y) {
+  const T2xSequenceRun run = RunT2xSequence("smaa-t2x", 4, [](int k) { return MakeFrame(32, 32, [&](int x, int y) {
     return Code(SlantedEdge(k), x, y); }, [](int, int) { return glm::vec2(0); }); }, Strategy::StencilCulled);
   const auto decoded = [](const sim::Texture2D<glm::vec4>& t, int x, int y) {
     return sim::Decode(sim::Format::RGBA8Srgb, t.Get(x, y));
@@ -226,8 +226,8 @@ TEST(SmaaT2x, VelocityReprojectionOfAnIntegerShiftedPlaneIsExact) {
     return MakeFrame(kSize, kSize, [k](int x, int y) { return SmoothTexture(x - kDx * k, y - kDy * k); },
                      [](int, int) { return glm::vec2(kDx, kDy); });
   };
-  const SequenceRun reprojected = RunSequence("smaa-t2x", 4, plane, Strategy::DeferredQueue);
-  const SequenceRun averaged = RunSequence("smaa-t2x:reprojection=0", 4, plane, Strategy::DeferredQueue);
+  const T2xSequenceRun reprojected = RunT2xSequence("smaa-t2x", 4, plane, Strategy::DeferredQueue);
+  const T2xSequenceRun averaged = RunT2xSequence("smaa-t2x:reprojection=0", 4, plane, Strategy::DeferredQueue);
   int differing = 0;
   for (int k = 1; k < 4; ++k) {
     const SyntheticFrame frame = plane(k);
@@ -246,8 +246,8 @@ TEST(SmaaT2x, VelocityReprojectionOfAnIntegerShiftedPlaneIsExact) {
 
 TEST(SmaaT2x, StrategiesGiveIdenticalImagesOverASequence) {
   for (const char* spec : {"smaa-t2x", "smaa-t2x:reprojection=0"}) {
-    const SequenceRun stencil = RunSequence(spec, 5, MovingBox, Strategy::StencilCulled);
-    const SequenceRun queue = RunSequence(spec, 5, MovingBox, Strategy::DeferredQueue);
+    const T2xSequenceRun stencil = RunT2xSequence(spec, 5, T2xMovingBox, Strategy::StencilCulled);
+    const T2xSequenceRun queue = RunT2xSequence(spec, 5, T2xMovingBox, Strategy::DeferredQueue);
     for (std::size_t k = 0; k < stencil.outputs.size(); ++k) {
       EXPECT_GT(stencil.outputs[k].workItems, 0u);
       const StrategyDifference difference = CompareOutputs(stencil.outputs[k], queue.outputs[k]);
@@ -258,8 +258,8 @@ TEST(SmaaT2x, StrategiesGiveIdenticalImagesOverASequence) {
 
 TEST(SmaaT2x, OneAndTwoThreadsGiveIdenticalImagesAndCountersOverASequence) {
   for (const Strategy strategy : kAllStrategies) {
-    const SequenceRun one = RunSequence("smaa-t2x", 4, MovingBox, strategy, 1);
-    const SequenceRun two = RunSequence("smaa-t2x", 4, MovingBox, strategy, 2);
+    const T2xSequenceRun one = RunT2xSequence("smaa-t2x", 4, T2xMovingBox, strategy, 1);
+    const T2xSequenceRun two = RunT2xSequence("smaa-t2x", 4, T2xMovingBox, strategy, 2);
     for (std::size_t k = 0; k < one.outputs.size(); ++k) {
       EXPECT_TRUE(CompareOutputs(one.outputs[k], two.outputs[k]).Identical()) << StrategyName(strategy) << " " << k;
     }
@@ -269,7 +269,7 @@ TEST(SmaaT2x, OneAndTwoThreadsGiveIdenticalImagesAndCountersOverASequence) {
 
 // The history is a machine resource: the resolve reads both targets' bytes.
 TEST(SmaaT2x, TheResolveReadsTheHistoryTargetsBytes) {
-  const SequenceRun run = RunSequence("smaa-t2x", 2, MovingBox, Strategy::StencilCulled);
+  const T2xSequenceRun run = RunT2xSequence("smaa-t2x", 2, T2xMovingBox, Strategy::StencilCulled);
   std::uint64_t historyBytes = 0;
   for (const sim::DispatchReport& report : run.reports) {
     if (report.name != "smaa-t2x/resolve") continue;
@@ -283,7 +283,7 @@ TEST(SmaaT2x, TheResolveReadsTheHistoryTargetsBytes) {
 
 // ---- 4x: S2x per frame on a rendered 2-sample surface ----
 
-SequenceRun RunFourX(Strategy strategy, int threads) {
+T2xSequenceRun RunFourX(Strategy strategy, int threads) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   constexpr int kWidth = 64, kHeight = 40;
   const float aspect = static_cast<float>(kWidth) / kHeight;
@@ -297,7 +297,7 @@ SequenceRun RunFourX(Strategy strategy, int threads) {
   settings.pattern = schedule.At(0);
   sim::FramePipeline pipeline(machine, settings);
   const std::unique_ptr<Pass> pass = ResolvePass("smaa-4x").Make();
-  SequenceRun run;
+  T2xSequenceRun run;
   for (int k = 0; k < 3; ++k) {
     pipeline.Render(scene.Geometry(), {.pattern = &schedule.At(k), .frameIndex = k});
     machine.ClearReports();
@@ -309,9 +309,9 @@ SequenceRun RunFourX(Strategy strategy, int threads) {
 }
 
 TEST(SmaaFourX, StrategiesAndThreadsGiveIdenticalImagesAndCountersOverASequence) {
-  const SequenceRun stencil = RunFourX(Strategy::StencilCulled, 2);
-  const SequenceRun queue = RunFourX(Strategy::DeferredQueue, 2);
-  const SequenceRun queueOneThread = RunFourX(Strategy::DeferredQueue, 1);
+  const T2xSequenceRun stencil = RunFourX(Strategy::StencilCulled, 2);
+  const T2xSequenceRun queue = RunFourX(Strategy::DeferredQueue, 2);
+  const T2xSequenceRun queueOneThread = RunFourX(Strategy::DeferredQueue, 1);
   for (std::size_t k = 0; k < stencil.outputs.size(); ++k) {
     EXPECT_GT(stencil.outputs[k].workItems, 0u);
     EXPECT_TRUE(CompareOutputs(stencil.outputs[k], queue.outputs[k]).Identical()) << k;

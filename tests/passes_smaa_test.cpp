@@ -49,12 +49,12 @@ SmaaRun RunSmaa(std::string_view spec, const sim::Texture2D<glm::vec4>& image,
 // Codes of the output's red channel, as the 8-bit sRGB target holds them.
 int OutputCode(const SmaaRun& run, int x, int y) { return sim::FloatToSrgb8(run.output.colour.At(x, y).r); }
 
-constexpr int kDark = 40, kBright = 200;
+constexpr int kSmaaDark = 40, kSmaaBright = 200;
 
 // ---- Edge detection (aa-facts §1.3) ----
 
 TEST(SmaaEdges, AVerticalStepMarksTheLeftEdgeOfTheColumnRightOfIt) {
-  const auto image = GreyImage(16, 8, [](int x, int) { return x < 6 ? kDark : kBright; });
+  const auto image = GreyImage(16, 8, [](int x, int) { return x < 6 ? kSmaaDark : kSmaaBright; });
   const SmaaRun run = RunSmaa("smaa", image);
   for (int y = 0; y < 8; ++y) {
     for (int x = 0; x < 16; ++x) {
@@ -130,13 +130,13 @@ TEST(SmaaEdges, PredicationLowersTheThresholdOnlyWhereTheDepthHasAnEdge) {
 // ---- Blending weights: where SMAA has nothing to blend ----
 
 TEST(SmaaWeights, StraightEdgesWithoutEndsGetNoWeight) {
-  const auto image = GreyImage(64, 32, [](int, int y) { return y < 16 ? kDark : kBright; });
+  const auto image = GreyImage(64, 32, [](int, int y) { return y < 16 ? kSmaaDark : kSmaaBright; });
   const SmaaRun run = RunSmaa("smaa", image);
   EXPECT_EQ(run.output.workItems, 64u);
   for (int y = 0; y < 32; ++y) {
     for (int x = 0; x < 64; ++x) {
       for (int c = 0; c < 4; ++c) ASSERT_EQ(run.At("weights", x, y, c), 0.0f) << x << "," << y << " channel " << c;
-      ASSERT_EQ(OutputCode(run, x, y), image.At(x, y).r > 0.5f ? kBright : kDark);
+      ASSERT_EQ(OutputCode(run, x, y), image.At(x, y).r > 0.5f ? kSmaaBright : kSmaaDark);
     }
   }
 }
@@ -144,10 +144,10 @@ TEST(SmaaWeights, StraightEdgesWithoutEndsGetNoWeight) {
 // Every edge of a checkerboard is one pixel long and crossed at both ends in both rows: a "+"
 // pattern at each end, whose area is zero (aa-facts §1.6).
 TEST(SmaaWeights, ACheckerboardIsLeftAlone) {
-  const auto image = GreyImage(16, 16, [](int x, int y) { return (x + y) % 2 ? kDark : kBright; });
+  const auto image = GreyImage(16, 16, [](int x, int y) { return (x + y) % 2 ? kSmaaDark : kSmaaBright; });
   const SmaaRun run = RunSmaa("smaa:preset=medium", image);
   for (int y = 0; y < 16; ++y) {
-    for (int x = 0; x < 16; ++x) ASSERT_EQ(OutputCode(run, x, y), (x + y) % 2 ? kDark : kBright) << x << "," << y;
+    for (int x = 0; x < 16; ++x) ASSERT_EQ(OutputCode(run, x, y), (x + y) % 2 ? kSmaaDark : kSmaaBright) << x << "," << y;
   }
 }
 
@@ -200,7 +200,7 @@ AreaPair ZArea(int l, int r) {
 TEST(SmaaWeights, StairStepsMatchTheAnalyticAreas) {
   for (int n = 1; n <= 16; ++n) {
     const int width = 4 * n + 8, height = 12, y0 = 4;
-    const auto image = GreyImage(width, height, [&](int x, int y) { return y >= y0 + x / n ? kBright : kDark; });
+    const auto image = GreyImage(width, height, [&](int x, int y) { return y >= y0 + x / n ? kSmaaBright : kSmaaDark; });
     const SmaaRun run = RunSmaa("smaa:max_search_steps_diag=0,corner_rounding=100", image);
     for (int k = 1; k <= 2; ++k) {  // runs away from the image borders
       for (int l = 0; l < n; ++l) {
@@ -215,8 +215,8 @@ TEST(SmaaWeights, StairStepsMatchTheAnalyticAreas) {
 
 // A one-pixel line across the whole image is two straight edges without ends: nothing to blend.
 TEST(SmaaWeights, OnePixelLinesAcrossTheImageAreLeftAlone) {
-  const auto horizontal = GreyImage(64, 16, [](int, int y) { return y == 7 ? kBright : kDark; });
-  const auto vertical = GreyImage(16, 64, [](int x, int) { return x == 7 ? kBright : kDark; });
+  const auto horizontal = GreyImage(64, 16, [](int, int y) { return y == 7 ? kSmaaBright : kSmaaDark; });
+  const auto vertical = GreyImage(16, 64, [](int x, int) { return x == 7 ? kSmaaBright : kSmaaDark; });
   for (const auto* image : {&horizontal, &vertical}) {
     const SmaaRun run = RunSmaa("smaa", *image);
     EXPECT_GT(run.output.workItems, 0u);
@@ -236,7 +236,7 @@ TEST(SmaaWeights, AUShapeBlendsSymmetricallyMostAtItsEnds) {
   for (const int m : {3, 4, 7, 10}) {
     const int a = 20, y0 = 8;
     const auto image = GreyImage(64, 16, [&](int x, int y) {
-      return y >= y0 || (y == y0 - 1 && x >= a && x < a + m) ? kBright : kDark;
+      return y >= y0 || (y == y0 - 1 && x >= a && x < a + m) ? kSmaaBright : kSmaaDark;
     });
     const SmaaRun run = RunSmaa("smaa:max_search_steps_diag=0,corner_rounding=100", image);
     for (int l = 0; l < m; ++l) {
@@ -260,7 +260,7 @@ TEST(SmaaSymmetry, TransposingTheImageTransposesEdgesWeightsAndOutput) {
   const Codes shapes = [](int x, int y) {
     const bool disc = (x - 20) * (x - 20) + (y - 26) * (y - 26) < 140;
     const bool bar = x > 30 && x < 44 && y > 5 && y < 9 + x / 8;
-    return disc ? kBright : bar ? 150 : kDark;
+    return disc ? kSmaaBright : bar ? 150 : kSmaaDark;
   };
   const auto image = GreyImage(n, n, shapes);
   const auto transposed = GreyImage(n, n, [&](int x, int y) { return shapes(y, x); });
@@ -284,7 +284,7 @@ TEST(SmaaSymmetry, TransposingTheImageTransposesEdgesWeightsAndOutput) {
 // A long edge with one step: every preset searches further than the one before it (steps of
 // 2 px, aa-facts §1.2), and the search stops at the ends it can reach.
 TEST(SmaaPresets, EachPresetSearchesFurther) {
-  const auto image = GreyImage(256, 16, [](int x, int y) { return y < (x < 128 ? 8 : 9) ? kDark : kBright; });
+  const auto image = GreyImage(256, 16, [](int x, int y) { return y < (x < 128 ? 8 : 9) ? kSmaaDark : kSmaaBright; });
   std::uint64_t previous = 0;
   for (const char* preset : {"low", "medium", "high", "ultra"}) {
     const SmaaRun run = RunSmaa(std::string("smaa:preset=") + preset, image);

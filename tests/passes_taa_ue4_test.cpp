@@ -25,7 +25,7 @@ namespace passes::taa_ue4 {
 namespace {
 
 // One synthetic frame: every target the pass reads.
-struct Frame {
+struct TaaFrame {
   sim::Texture2D<glm::vec4> colour;
   sim::Texture2D<float> depth;
   sim::Texture2D<glm::vec2> velocity;
@@ -33,7 +33,7 @@ struct Frame {
   glm::vec2 jitter{0.0f};
   int index = 0;
 
-  Frame(int w, int h)
+  TaaFrame(int w, int h)
       : colour("colour", w, h, 16), depth("depth", w, h, 4, 0.9f), velocity("velocity", w, h, 8), objectId("id", w, h, 4) {}
   FrameInputs Inputs() const {
     return {.colour = &colour, .depth = &depth, .normal = nullptr, .objectId = &objectId, .velocity = &velocity,
@@ -53,18 +53,18 @@ std::unique_ptr<Pass> MakeTaa(const std::vector<std::pair<std::string_view, doub
   return Make(settings);
 }
 
-struct Sequence {
+struct TaaSequence {
   std::vector<PassOutput> outputs;
   std::vector<sim::DispatchReport> reports;
 };
 
 // Runs `frames` frames made by `make(index)` through one instance.
-Sequence RunSequence(Pass& pass, int frames, const std::function<Frame(int)>& make,
+TaaSequence RunTaaSequence(Pass& pass, int frames, const std::function<TaaFrame(int)>& make,
                      Strategy strategy = Strategy::StencilCulled) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  Sequence sequence;
+  TaaSequence sequence;
   for (int t = 0; t < frames; ++t) {
-    const Frame frame = make(t);
+    const TaaFrame frame = make(t);
     sequence.outputs.push_back(pass.Run(machine, frame.Inputs(), strategy));
   }
   sequence.reports = machine.Reports();
@@ -83,22 +83,22 @@ std::uint64_t CounterSum(const std::vector<sim::DispatchReport>& reports, std::s
 
 // ---- convergence ----
 
-constexpr int kSide = 32;
-constexpr float kDark = 0.2f, kBright = 0.8f;
+constexpr int kTaaSide = 32;
+constexpr float kTaaDark = 0.2f, kTaaBright = 0.8f;
 
 // Two vertical edges at non-integer positions (or, transposed, horizontal ones): a band of
 // bright between them.
 float Band(glm::vec2 p, bool transposed) {
   const float u = transposed ? p.y : p.x;
-  return u >= 13.3f && u < 22.75f ? kBright : kDark;
+  return u >= 13.3f && u < 22.75f ? kTaaBright : kTaaDark;
 }
 
-Frame JitteredBand(int t, bool transposed) {
-  Frame frame(kSide, kSide);
+TaaFrame JitteredBand(int t, bool transposed) {
+  TaaFrame frame(kTaaSide, kTaaSide);
   frame.index = t;
   frame.jitter = HaltonJitter(t);
-  for (int y = 0; y < kSide; ++y) {
-    for (int x = 0; x < kSide; ++x) {
+  for (int y = 0; y < kTaaSide; ++y) {
+    for (int x = 0; x < kTaaSide; ++x) {
       const float v = Band(glm::vec2(x, y) + 0.5f + frame.jitter, transposed);
       frame.colour.At(x, y) = glm::vec4(v, v, v, 1.0f);
     }
@@ -108,14 +108,14 @@ Frame JitteredBand(int t, bool transposed) {
 
 // What the pass takes as the current frame at pixel (x, y) of frame t without luma weights: the
 // pixel's own sample, or the Gaussian reconstruction of its 3x3 (in double).
-double CurrentValue(const Frame& frame, int x, int y, bool reconstruction) {
+double CurrentValue(const TaaFrame& frame, int x, int y, bool reconstruction) {
   if (!reconstruction) return static_cast<double>(frame.colour.At(x, y).r);
   double sum = 0.0, weights = 0.0;
   for (int oy = -1; oy <= 1; ++oy) {
     for (int ox = -1; ox <= 1; ++ox) {
       const double dx = ox + static_cast<double>(frame.jitter.x), dy = oy + static_cast<double>(frame.jitter.y);
       const double w = std::exp(-2.29 * (dx * dx + dy * dy));
-      sum += w * static_cast<double>(frame.colour.At(std::clamp(x + ox, 0, kSide - 1), std::clamp(y + oy, 0, kSide - 1)).r);
+      sum += w * static_cast<double>(frame.colour.At(std::clamp(x + ox, 0, kTaaSide - 1), std::clamp(y + oy, 0, kTaaSide - 1)).r);
       weights += w;
     }
   }
@@ -151,15 +151,15 @@ void ExpectConvergence(bool reconstruction, bool transposed) {
   const std::unique_ptr<Pass> pass =
       MakeTaa({{"luma_weight", 0}, {"anti_flicker", 0}, {"reconstruction", reconstruction ? 1 : 0},
                {"constraint", reconstruction ? 0 : 2}});
-  const Sequence run = RunSequence(*pass, kFrames + 1, [&](int t) { return JitteredBand(t, transposed); });
-  std::vector<Frame> period;
+  const TaaSequence run = RunTaaSequence(*pass, kFrames + 1, [&](int t) { return JitteredBand(t, transposed); });
+  std::vector<TaaFrame> period;
   for (int t = 0; t < 8; ++t) period.push_back(JitteredBand(t, transposed));
   double firstWorst = 0.0, lastWorst = 0.0;
   int varying = 0;
-  for (int y = 0; y < kSide; ++y) {
-    for (int x = 0; x < kSide; ++x) {
+  for (int y = 0; y < kTaaSide; ++y) {
+    for (int x = 0; x < kTaaSide; ++x) {
       double mean = 0.0, lo = 1e9, hi = -1e9;
-      for (const Frame& frame : period) {
+      for (const TaaFrame& frame : period) {
         const double v = CurrentValue(frame, x, y, reconstruction);
         mean += v / 8.0;
         lo = std::min(lo, v);
@@ -174,7 +174,7 @@ void ExpectConvergence(bool reconstruction, bool transposed) {
     }
   }
   // The bound means something: frame 0 (no history) is far off on the edge pixels.
-  EXPECT_GE(varying, 2 * kSide);  // the two straddling columns at least
+  EXPECT_GE(varying, 2 * kTaaSide);  // the two straddling columns at least
   EXPECT_GT(firstWorst, 0.1);
   EXPECT_LT(lastWorst, 0.05);
 }
@@ -194,16 +194,16 @@ TEST(PassesTaaUe4, AStaticSceneConvergesToItsSupersampledValue) {
 // it.)
 TEST(PassesTaaUe4, WithWeightsAndClippingTheErrorFallsAsFramesAccumulate) {
   const std::unique_ptr<Pass> pass = MakeTaa({{"reconstruction", 0}});
-  const Sequence run = RunSequence(*pass, 121, [](int t) { return JitteredBand(t, false); });
-  std::vector<Frame> period;
+  const TaaSequence run = RunTaaSequence(*pass, 121, [](int t) { return JitteredBand(t, false); });
+  std::vector<TaaFrame> period;
   for (int t = 0; t < 8; ++t) period.push_back(JitteredBand(t, false));
   const auto edgeError = [&](const PassOutput& output) {
     double sum = 0.0;
     int pixels = 0;
-    for (int y = 0; y < kSide; ++y) {
-      for (int x = 0; x < kSide; ++x) {
+    for (int y = 0; y < kTaaSide; ++y) {
+      for (int x = 0; x < kTaaSide; ++x) {
         double mean = 0.0, lo = 1.0, hi = 0.0;
-        for (const Frame& frame : period) {
+        for (const TaaFrame& frame : period) {
           const double v = CurrentValue(frame, x, y, false);
           mean += v / 8.0;
           lo = std::min(lo, v);
@@ -232,8 +232,8 @@ glm::vec4 PlaneTexel(int u, int v) {
           static_cast<float>(m(u + v * 2, 5)) / 64.0f + 0.5f, 1.0f};
 }
 
-Frame TranslatedPlane(int t, glm::ivec2 shift, glm::vec2 reportedVelocity) {
-  Frame frame(kPlaneW, kPlaneH);
+TaaFrame TranslatedPlane(int t, glm::ivec2 shift, glm::vec2 reportedVelocity) {
+  TaaFrame frame(kPlaneW, kPlaneH);
   frame.index = t;
   for (int y = 0; y < kPlaneH; ++y) {
     for (int x = 0; x < kPlaneW; ++x) {
@@ -253,9 +253,9 @@ Frame TranslatedPlane(int t, glm::ivec2 shift, glm::vec2 reportedVelocity) {
 TEST(PassesTaaUe4, VelocityReprojectionOfATranslatingPlaneIsExactForWholePixelShifts) {
   for (const glm::ivec2 shift : {glm::ivec2(2, 1), glm::ivec2(-1, 3), glm::ivec2(0, -2)}) {
     const std::unique_ptr<Pass> pass = MakeTaa({{"reconstruction", 0}});
-    const Sequence run = RunSequence(*pass, 6, [&](int t) { return TranslatedPlane(t, shift, glm::vec2(shift)); });
+    const TaaSequence run = RunTaaSequence(*pass, 6, [&](int t) { return TranslatedPlane(t, shift, glm::vec2(shift)); });
     for (int t = 0; t < 6; ++t) {
-      const Frame expected = TranslatedPlane(t, shift, glm::vec2(shift));
+      const TaaFrame expected = TranslatedPlane(t, shift, glm::vec2(shift));
       for (int y = 0; y < kPlaneH; ++y) {
         for (int x = 0; x < kPlaneW; ++x) {
           ASSERT_EQ(run.outputs[static_cast<std::size_t>(t)].colour.At(x, y), expected.colour.At(x, y))
@@ -266,9 +266,9 @@ TEST(PassesTaaUe4, VelocityReprojectionOfATranslatingPlaneIsExactForWholePixelSh
   }
   // The same motion reported as no motion smears: the history no longer matches.
   const std::unique_ptr<Pass> pass = MakeTaa({{"reconstruction", 0}});
-  const Sequence run = RunSequence(*pass, 3, [](int t) { return TranslatedPlane(t, {2, 1}, glm::vec2(0.0f)); });
+  const TaaSequence run = RunTaaSequence(*pass, 3, [](int t) { return TranslatedPlane(t, {2, 1}, glm::vec2(0.0f)); });
   int wrong = 0;
-  const Frame expected = TranslatedPlane(2, {2, 1}, glm::vec2(0.0f));
+  const TaaFrame expected = TranslatedPlane(2, {2, 1}, glm::vec2(0.0f));
   for (int y = 0; y < kPlaneH; ++y) {
     for (int x = 0; x < kPlaneW; ++x) wrong += run.outputs[2].colour.At(x, y) != expected.colour.At(x, y) ? 1 : 0;
   }
@@ -278,18 +278,18 @@ TEST(PassesTaaUe4, VelocityReprojectionOfATranslatingPlaneIsExactForWholePixelSh
 // ---- disocclusion ----
 
 constexpr int kBoxSide = 6;
-constexpr glm::vec3 kBoxColour{0.9f, 0.5f, 0.1f};
+constexpr glm::vec3 kTaaBoxColour{0.9f, 0.5f, 0.1f};
 
 // A 6x6 box moving right 2 px per frame over a flat background; the box is nearer.
-Frame MovingBox(int t, bool texturedBackground = false) {
-  Frame frame(40, 24);
+TaaFrame TaaMovingBox(int t, bool texturedBackground = false) {
+  TaaFrame frame(40, 24);
   frame.index = t;
   for (int y = 0; y < 24; ++y) {
     for (int x = 0; x < 40; ++x) {
-      const float background = texturedBackground ? 0.15f + 0.1f * static_cast<float>((x * 3 + y * 5) % 4) : kDark;
+      const float background = texturedBackground ? 0.15f + 0.1f * static_cast<float>((x * 3 + y * 5) % 4) : kTaaDark;
       frame.colour.At(x, y) = glm::vec4(glm::vec3(background), 1.0f);
       if (x >= 4 + 2 * t && x < 4 + 2 * t + kBoxSide && y >= 9 && y < 9 + kBoxSide) {
-        frame.colour.At(x, y) = glm::vec4(kBoxColour, 1.0f);
+        frame.colour.At(x, y) = glm::vec4(kTaaBoxColour, 1.0f);
         frame.velocity.At(x, y) = {2.0f, 0.0f};
         frame.depth.At(x, y) = 0.3f;
         frame.objectId.At(x, y) = 7;
@@ -313,33 +313,33 @@ int DistanceToBox(int t, int x, int y) {
 TEST(PassesTaaUe4, ADisocclusionLeavesNoGhost) {
   constexpr int kFrames = 10;
   const std::unique_ptr<Pass> pass = MakeTaa();
-  const Sequence run = RunSequence(*pass, kFrames, [](int t) { return MovingBox(t); });
+  const TaaSequence run = RunTaaSequence(*pass, kFrames, [](int t) { return TaaMovingBox(t); });
   EXPECT_GT(CounterSum(run.reports, "taa-ue4/history_clipped"), 0u);
   for (int t = 1; t < kFrames; ++t) {
     for (int y = 0; y < 24; ++y) {
       for (int x = 0; x < 40; ++x) {
         if (DistanceToBox(t, x, y) < 2) continue;
         const glm::vec4 out = run.outputs[static_cast<std::size_t>(t)].colour.At(x, y);
-        for (int c = 0; c < 3; ++c) ASSERT_NEAR(out[c], kDark, 1e-3f) << "frame " << t << " at " << x << "," << y;
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(out[c], kTaaDark, 1e-3f) << "frame " << t << " at " << x << "," << y;
       }
     }
   }
   // Unconstrained, the trail keeps the box's colour (what the test would see without the clip).
   const std::unique_ptr<Pass> unconstrained = MakeTaa({{"constraint", 0}});
-  const Sequence ghosted = RunSequence(*unconstrained, kFrames, [](int t) { return MovingBox(t); });
-  EXPECT_GT(ghosted.outputs.back().colour.At(5, 11).r, kDark + 0.02f);
+  const TaaSequence ghosted = RunTaaSequence(*unconstrained, kFrames, [](int t) { return TaaMovingBox(t); });
+  EXPECT_GT(ghosted.outputs.back().colour.At(5, 11).r, kTaaDark + 0.02f);
 }
 
 // ---- responsive pixels and anti-flicker ----
 
 TEST(PassesTaaUe4, ResponsivePixelsTakeTheResponsiveWeight) {
   const auto make = [](int t) {
-    Frame frame(16, 16);
+    TaaFrame frame(16, 16);
     frame.index = t;
     for (int y = 0; y < 16; ++y) {
       for (int x = 0; x < 16; ++x) {
         frame.objectId.At(x, y) = x < 8 ? 7 : 3;
-        const float v = t == 0 ? kDark : 0.6f;
+        const float v = t == 0 ? kTaaDark : 0.6f;
         frame.colour.At(x, y) = glm::vec4(v, v, v, 1.0f);
       }
     }
@@ -347,9 +347,9 @@ TEST(PassesTaaUe4, ResponsivePixelsTakeTheResponsiveWeight) {
   };
   const std::unique_ptr<Pass> pass =
       MakeTaa({{"responsive_object", 7}, {"constraint", 0}, {"luma_weight", 0}, {"reconstruction", 0}});
-  const Sequence run = RunSequence(*pass, 2, make);
-  EXPECT_NEAR(run.outputs[1].colour.At(3, 5).r, kDark + 0.8f * (0.6f - kDark), 1e-3f);   // responsive_alpha 0.8
-  EXPECT_NEAR(run.outputs[1].colour.At(12, 5).r, kDark + 0.04f * (0.6f - kDark), 1e-3f);  // alpha 0.04
+  const TaaSequence run = RunTaaSequence(*pass, 2, make);
+  EXPECT_NEAR(run.outputs[1].colour.At(3, 5).r, kTaaDark + 0.8f * (0.6f - kTaaDark), 1e-3f);   // responsive_alpha 0.8
+  EXPECT_NEAR(run.outputs[1].colour.At(12, 5).r, kTaaDark + 0.04f * (0.6f - kTaaDark), 1e-3f);  // alpha 0.04
   EXPECT_EQ(CounterSum(run.reports, "taa-ue4/responsive_pixels"), 8u * 16u);
 }
 
@@ -372,13 +372,13 @@ TEST(PassesTaaUe4, AntiFlickerLowersTheCurrentWeightTowardsTheBoxFaces) {
 // history sits near a face of the box, so the frame-to-frame change of the output is smaller.
 TEST(PassesTaaUe4, AntiFlickerReducesTheFlickerOfASubPixelLine) {
   const auto make = [](int t) {
-    Frame frame(kSide, kSide);
+    TaaFrame frame(kTaaSide, kTaaSide);
     frame.index = t;
     frame.jitter = HaltonJitter(t);
-    for (int y = 0; y < kSide; ++y) {
-      for (int x = 0; x < kSide; ++x) {
+    for (int y = 0; y < kTaaSide; ++y) {
+      for (int x = 0; x < kTaaSide; ++x) {
         const float u = static_cast<float>(x) + 0.5f + frame.jitter.x;
-        const float v = u >= 13.3f && u < 13.6f ? kBright : kDark;
+        const float v = u >= 13.3f && u < 13.6f ? kTaaBright : kTaaDark;
         frame.colour.At(x, y) = glm::vec4(v, v, v, 1.0f);
       }
     }
@@ -386,7 +386,7 @@ TEST(PassesTaaUe4, AntiFlickerReducesTheFlickerOfASubPixelLine) {
   };
   const auto flicker = [&](double strength) {
     const std::unique_ptr<Pass> pass = MakeTaa({{"anti_flicker", strength}});
-    const Sequence run = RunSequence(*pass, 120, make);
+    const TaaSequence run = RunTaaSequence(*pass, 120, make);
     double sum = 0.0;
     for (std::size_t t = 64; t < run.outputs.size(); ++t) {
       for (int x = 11; x <= 15; ++x) {
@@ -403,16 +403,16 @@ TEST(PassesTaaUe4, AntiFlickerReducesTheFlickerOfASubPixelLine) {
 
 TEST(PassesTaaUe4, OneAndTwoThreadsGiveIdenticalSequences) {
   const auto make = [](int t) {
-    Frame frame = MovingBox(t, true);
+    TaaFrame frame = TaaMovingBox(t, true);
     frame.jitter = HaltonJitter(t);
     return frame;
   };
   const auto runWith = [&](int threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     const std::unique_ptr<Pass> pass = MakeTaa({{"responsive_object", 7}});
-    return RunSequence(*pass, 8, make);
+    return RunTaaSequence(*pass, 8, make);
   };
-  const Sequence one = runWith(1), two = runWith(2);
+  const TaaSequence one = runWith(1), two = runWith(2);
   ASSERT_EQ(one.outputs.size(), two.outputs.size());
   for (std::size_t t = 0; t < one.outputs.size(); ++t) {
     EXPECT_TRUE(CompareOutputs(one.outputs[t], two.outputs[t]).Identical()) << "frame " << t;

@@ -23,40 +23,40 @@
 namespace passes {
 namespace {
 
-constexpr int kWidth = 70, kHeight = 46;  // not multiples of 8: partial groups and quads
-constexpr int kFrames = 4;
+constexpr int kTemporalWidth = 70, kTemporalHeight = 46;  // not multiples of 8: partial groups and quads
+constexpr int kTemporalFrames = 4;
 
-struct FrameRun {
+struct TemporalFrameRun {
   PassOutput output;
   std::vector<sim::DispatchReport> reports;
 };
 
-// The pass over kFrames frames of the wheel, one instance for the sequence; with `freshLast`, a
+// The pass over kTemporalFrames frames of the wheel, one instance for the sequence; with `freshLast`, a
 // fresh instance also runs the last frame (its output is appended after the sequence's).
-std::vector<FrameRun> RunSequence(const RegisteredPass& registered, Strategy strategy, int threads,
+std::vector<TemporalFrameRun> RunRegisteredSequence(const RegisteredPass& registered, Strategy strategy, int threads,
                                   bool freshLast = false) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   const PassInfo& info = registered.info();
-  const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
+  const float aspect = static_cast<float>(kTemporalWidth) / static_cast<float>(kTemporalHeight);
   const scenes::Scene scene = scenes::LoadScene("builtin:wheel", aspect);
   const study::FrameScene frame = study::ToFrameScene(scene, aspect);
   const int samples = std::max(1, raster::JitterScheduleSamples(info.jitter));
   sim::FrameSettings settings;
-  settings.width = kWidth;
-  settings.height = kHeight;
+  settings.width = kTemporalWidth;
+  settings.height = kTemporalHeight;
   settings.eqaa = {samples, samples, samples};
   settings.pattern = raster::MakeBuiltinPattern("standard", samples);
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   study::SequenceConfig config;
-  config.frames = kFrames;
+  config.frames = kTemporalFrames;
   study::SequenceRenderer renderer(machine, scene, frame, settings,
                                    raster::JitterSchedule::Make(info.jitter, settings.pattern), config);
   const std::unique_ptr<Pass> pass = registered.make(PassSettings(info.name, info.settings));
-  std::vector<FrameRun> runs;
-  for (int k = 0; k < kFrames; ++k) {
+  std::vector<TemporalFrameRun> runs;
+  for (int k = 0; k < kTemporalFrames; ++k) {
     renderer.Render(k);
     machine.ClearReports();
-    FrameRun run{pass->Run(machine, renderer.Inputs(), strategy), {}};
+    TemporalFrameRun run{pass->Run(machine, renderer.Inputs(), strategy), {}};
     run.reports = machine.TakeReports();
     runs.push_back(std::move(run));
   }
@@ -100,10 +100,10 @@ TEST_P(EveryTemporalPass, DeclaresAScheduleThatDrawsWhatItReads) {
 
 TEST_P(EveryTemporalPass, StrategiesGiveBitIdenticalOutputsOnEveryFrame) {
   const std::vector<Strategy>& strategies = Info().strategies;
-  const std::vector<FrameRun> first = RunSequence(Pass(), strategies.front(), 2);
+  const std::vector<TemporalFrameRun> first = RunRegisteredSequence(Pass(), strategies.front(), 2);
   for (std::size_t s = 1; s < strategies.size(); ++s) {
-    const std::vector<FrameRun> other = RunSequence(Pass(), strategies[s], 2);
-    for (int k = 0; k < kFrames; ++k) {
+    const std::vector<TemporalFrameRun> other = RunRegisteredSequence(Pass(), strategies[s], 2);
+    for (int k = 0; k < kTemporalFrames; ++k) {
       const StrategyDifference difference = CompareOutputs(first[k].output, other[k].output);
       EXPECT_TRUE(difference.Identical()) << StrategyName(strategies[s]) << " frame " << k << ": " << difference.Describe();
     }
@@ -112,8 +112,8 @@ TEST_P(EveryTemporalPass, StrategiesGiveBitIdenticalOutputsOnEveryFrame) {
 
 TEST_P(EveryTemporalPass, OneAndTwoThreadsGiveTheSameSequence) {
   for (const Strategy strategy : Info().strategies) {
-    const std::vector<FrameRun> one = RunSequence(Pass(), strategy, 1), two = RunSequence(Pass(), strategy, 2);
-    for (int k = 0; k < kFrames; ++k) {
+    const std::vector<TemporalFrameRun> one = RunRegisteredSequence(Pass(), strategy, 1), two = RunRegisteredSequence(Pass(), strategy, 2);
+    for (int k = 0; k < kTemporalFrames; ++k) {
       EXPECT_TRUE(CompareOutputs(one[k].output, two[k].output).Identical()) << StrategyName(strategy) << " frame " << k;
       sim::testing::ExpectSameReports(one[k].reports, two[k].reports);
     }
@@ -121,15 +121,15 @@ TEST_P(EveryTemporalPass, OneAndTwoThreadsGiveTheSameSequence) {
 }
 
 TEST_P(EveryTemporalPass, ReadsAndWritesItsHistoryOnTheMachine) {
-  const std::vector<FrameRun> runs = RunSequence(Pass(), Info().strategies.front(), 2);
-  for (int k = 1; k < kFrames; ++k) EXPECT_GT(HistoryBytes(runs[k].reports), 0u) << "frame " << k;
+  const std::vector<TemporalFrameRun> runs = RunRegisteredSequence(Pass(), Info().strategies.front(), 2);
+  for (int k = 1; k < kTemporalFrames; ++k) EXPECT_GT(HistoryBytes(runs[k].reports), 0u) << "frame " << k;
 }
 
 // The last frame through a fresh instance (no history) differs from the same frame at the end of
 // the sequence: the history is used.
 TEST_P(EveryTemporalPass, HistoryChangesTheOutput) {
-  const std::vector<FrameRun> runs = RunSequence(Pass(), Info().strategies.front(), 2, true);
-  const PassOutput &sequenced = runs[kFrames - 1].output, &fresh = runs[kFrames].output;
+  const std::vector<TemporalFrameRun> runs = RunRegisteredSequence(Pass(), Info().strategies.front(), 2, true);
+  const PassOutput &sequenced = runs[kTemporalFrames - 1].output, &fresh = runs[kTemporalFrames].output;
   EXPECT_NE(std::vector<glm::vec4>(sequenced.colour.Texels().begin(), sequenced.colour.Texels().end()),
             std::vector<glm::vec4>(fresh.colour.Texels().begin(), fresh.colour.Texels().end()));
 }

@@ -21,7 +21,7 @@ namespace passes::temporal {
 namespace {
 
 // Power-of-two sizes keep uv * size exact, so a texel-centre coordinate stays one.
-constexpr int kW = 32, kH = 16;
+constexpr int kTexW = 32, kTexH = 16;
 
 // Runs `body` on one compute lane with the texture bound.
 void OnLane(const sim::Texture2D<glm::vec4>& texture,
@@ -32,15 +32,15 @@ void OnLane(const sim::Texture2D<glm::vec4>& texture,
   machine.Compute(d, {.threads = {1, 1, 1}, .groupSize = {1, 1, 1}}, [&](sim::ComputeLane& lane) { body(view, lane); });
 }
 
-sim::Texture2D<glm::vec4> Image(const std::function<glm::vec4(int, int)>& texel) {
-  sim::Texture2D<glm::vec4> image("history", kW, kH, sim::Format::RGBA16Float);
-  for (int y = 0; y < kH; ++y) {
-    for (int x = 0; x < kW; ++x) image.At(x, y) = texel(x, y);
+sim::Texture2D<glm::vec4> TextureOf(const std::function<glm::vec4(int, int)>& texel) {
+  sim::Texture2D<glm::vec4> image("history", kTexW, kTexH, sim::Format::RGBA16Float);
+  for (int y = 0; y < kTexH; ++y) {
+    for (int x = 0; x < kTexW; ++x) image.At(x, y) = texel(x, y);
   }
   return image;
 }
 
-glm::vec2 Uv(float x, float y) { return {x / kW, y / kH}; }
+glm::vec2 TexelUv(float x, float y) { return {x / kTexW, y / kTexH}; }
 
 TEST(PassesTemporal, CubicWeightsSumToOneAndCatmullRomReproducesLinearRamps) {
   for (int i = 0; i < 64; ++i) {
@@ -65,7 +65,7 @@ TEST(PassesTemporal, CubicWeightsSumToOneAndCatmullRomReproducesLinearRamps) {
 
 // Random positions over the texture (away from the border, where clamping repeats edge texels).
 std::vector<glm::vec2> Positions(std::mt19937& rng, int n) {
-  std::uniform_real_distribution<float> x(3.0f, kW - 3.0f), y(3.0f, kH - 3.0f);
+  std::uniform_real_distribution<float> x(3.0f, kTexW - 3.0f), y(3.0f, kTexH - 3.0f);
   std::vector<glm::vec2> positions;
   for (int i = 0; i < n; ++i) positions.emplace_back(x(rng), y(rng));
   return positions;
@@ -73,17 +73,17 @@ std::vector<glm::vec2> Positions(std::mt19937& rng, int n) {
 
 TEST(PassesTemporal, RenormalisedFilmicWeightsSumToOneSoAConstantStaysConstant) {
   const glm::vec4 grey(0.3f, 0.6f, 0.9f, 1.0f);
-  const sim::Texture2D<glm::vec4> image = Image([&](int, int) { return grey; });
+  const sim::Texture2D<glm::vec4> image = TextureOf([&](int, int) { return grey; });
   std::mt19937 rng(7);
   const std::vector<glm::vec2> positions = Positions(rng, 200);
   OnLane(image, [&](const auto& view, const auto& lane) {
     for (const glm::vec2 p : positions) {
       for (const float c : {0.4f, 0.5f, 0.6f, 1.0f}) {
-        const glm::vec4 filmic = SampleHistoryFilmic(view, lane, Uv(p.x, p.y), c);
+        const glm::vec4 filmic = SampleHistoryFilmic(view, lane, TexelUv(p.x, p.y), c);
         for (int k = 0; k < 4; ++k) EXPECT_NEAR(filmic[k], grey[k], 1e-6f) << p.x << "," << p.y << " c " << c;
       }
       // The Intel form's weights sum to 1 without renormalising.
-      const glm::vec4 intel = SampleHistoryIntel(view, lane, Uv(p.x, p.y));
+      const glm::vec4 intel = SampleHistoryIntel(view, lane, TexelUv(p.x, p.y));
       for (int k = 0; k < 4; ++k) EXPECT_NEAR(intel[k], grey[k], 1e-6f) << p.x << "," << p.y;
     }
   });
@@ -92,42 +92,42 @@ TEST(PassesTemporal, RenormalisedFilmicWeightsSumToOneSoAConstantStaysConstant) 
 // The bicubic filters reproduce a ramp along an axis wherever the other axis sits on a texel
 // centre (no corner weight); off the centres the dropped corners show, by design.
 TEST(PassesTemporal, FiveTapFiltersReproduceAxisRampsOnTexelRowsAndColumns) {
-  const sim::Texture2D<glm::vec4> rampX = Image([](int x, int) { return glm::vec4(0.25f * static_cast<float>(x)); });
-  const sim::Texture2D<glm::vec4> rampY = Image([](int, int y) { return glm::vec4(0.25f * static_cast<float>(y)); });
+  const sim::Texture2D<glm::vec4> rampX = TextureOf([](int x, int) { return glm::vec4(0.25f * static_cast<float>(x)); });
+  const sim::Texture2D<glm::vec4> rampY = TextureOf([](int, int y) { return glm::vec4(0.25f * static_cast<float>(y)); });
   for (int i = 0; i < 33; ++i) {
     const float t = 6.5f + static_cast<float>(i) / 16.0f;  // fractions 0..2 past texel 6's centre
     OnLane(rampX, [&](const auto& view, const auto& lane) {
       const float expected = 0.25f * (t - 0.5f);
-      EXPECT_NEAR(SampleHistoryFilmic(view, lane, Uv(t, 5.5f), kCatmullRom).r, expected, 1e-5f) << t;
-      EXPECT_NEAR(SampleHistoryIntel(view, lane, Uv(t, 5.5f)).r, expected, 1e-5f) << t;
+      EXPECT_NEAR(SampleHistoryFilmic(view, lane, TexelUv(t, 5.5f), kCatmullRom).r, expected, 1e-5f) << t;
+      EXPECT_NEAR(SampleHistoryIntel(view, lane, TexelUv(t, 5.5f)).r, expected, 1e-5f) << t;
     });
     OnLane(rampY, [&](const auto& view, const auto& lane) {
       const float y = t - 1.0f;  // rows 5..7
-      EXPECT_NEAR(SampleHistoryFilmic(view, lane, Uv(9.5f, y), kCatmullRom).r, 0.25f * (y - 0.5f), 1e-5f) << y;
-      EXPECT_NEAR(SampleHistoryIntel(view, lane, Uv(9.5f, y)).r, 0.25f * (y - 0.5f), 1e-5f) << y;
+      EXPECT_NEAR(SampleHistoryFilmic(view, lane, TexelUv(9.5f, y), kCatmullRom).r, 0.25f * (y - 0.5f), 1e-5f) << y;
+      EXPECT_NEAR(SampleHistoryIntel(view, lane, TexelUv(9.5f, y)).r, 0.25f * (y - 0.5f), 1e-5f) << y;
     });
   }
   // Off the centres the Filmic form's dropped corners pull a ramp off its value: the test above
   // would see it if the taps lay elsewhere.
   OnLane(rampX, [&](const auto& view, const auto& lane) {
-    EXPECT_GT(std::abs(SampleHistoryFilmic(view, lane, Uv(9.75f, 5.0f), kCatmullRom).r - 0.25f * 9.25f), 1e-4f);
+    EXPECT_GT(std::abs(SampleHistoryFilmic(view, lane, TexelUv(9.75f, 5.0f), kCatmullRom).r - 0.25f * 9.25f), 1e-4f);
   });
 }
 
 TEST(PassesTemporal, IntegerOffsetFetchReturnsTheTexelExactly) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  sim::Texture2D<glm::vec4> image = Image([&](int, int) { return glm::vec4(unit(rng), unit(rng), unit(rng), 1.0f); });
-  sim::Texture2D<glm::vec4> srgb("history8", kW, kH, sim::Format::RGBA8Srgb);
-  for (int y = 0; y < kH; ++y) {
-    for (int x = 0; x < kW; ++x) srgb.Set(x, y, image.At(x, y));  // quantised through its sRGB format
+  sim::Texture2D<glm::vec4> image = TextureOf([&](int, int) { return glm::vec4(unit(rng), unit(rng), unit(rng), 1.0f); });
+  sim::Texture2D<glm::vec4> srgb("history8", kTexW, kTexH, sim::Format::RGBA8Srgb);
+  for (int y = 0; y < kTexH; ++y) {
+    for (int x = 0; x < kTexW; ++x) srgb.Set(x, y, image.At(x, y));  // quantised through its sRGB format
   }
   for (const sim::Texture2D<glm::vec4>* texture : {&image, &srgb}) {
     OnLane(*texture, [&](const auto& view, const auto& lane) {
-      for (int y = 0; y < kH; ++y) {
-        for (int x = 0; x < kW; ++x) {
+      for (int y = 0; y < kTexH; ++y) {
+        for (int x = 0; x < kTexW; ++x) {
           // Reprojected by whole pixels: velocity (2, -1) brings pixel (x + 2, y - 1)'s history from (x, y).
-          const glm::vec2 uv = HistoryUv(x + 2, y - 1, {2.0f, -1.0f}, kW, kH);
+          const glm::vec2 uv = HistoryUv(x + 2, y - 1, {2.0f, -1.0f}, kTexW, kTexH);
           const glm::vec4 texel = view.Load(lane, x, y);
           EXPECT_EQ(SampleHistoryFilmic(view, lane, uv, 0.6f), texel) << x << "," << y;
           EXPECT_EQ(SampleHistoryIntel(view, lane, uv), texel) << x << "," << y;

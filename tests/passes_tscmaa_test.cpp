@@ -30,12 +30,12 @@ namespace {
 using testing::LayerNamed;
 using testing::LayerValue;
 
-constexpr int kSide = 48;
-constexpr int kFrames = 6;
+constexpr int kTscmaaSide = 48;
+constexpr int kTscmaaFrames = 6;
 
-struct Frame {
-  sim::Texture2D<glm::vec4> colour{"colour", kSide, kSide, 16};
-  sim::Texture2D<glm::vec2> velocity{"velocity", kSide, kSide, 8};
+struct TscmaaFrame {
+  sim::Texture2D<glm::vec4> colour{"colour", kTscmaaSide, kTscmaaSide, 16};
+  sim::Texture2D<glm::vec2> velocity{"velocity", kTscmaaSide, kTscmaaSide, 8};
   int index = 0;
   FrameInputs Inputs() const {
     return {.colour = &colour, .depth = nullptr, .normal = nullptr, .objectId = nullptr, .velocity = &velocity,
@@ -45,12 +45,12 @@ struct Frame {
 
 // A disk moving 0.4 px per frame to the right (its velocity on its pixels) in front of a
 // background with a diagonal stripe: curved and staircase edges, sub-pixel motion.
-Frame MovingDisk(int t) {
-  Frame frame;
+TscmaaFrame MovingDisk(int t) {
+  TscmaaFrame frame;
   frame.index = t;
   const glm::vec2 centre(20.0f + 0.4f * static_cast<float>(t), 24.0f);
-  for (int y = 0; y < kSide; ++y) {
-    for (int x = 0; x < kSide; ++x) {
+  for (int y = 0; y < kTscmaaSide; ++y) {
+    for (int x = 0; x < kTscmaaSide; ++x) {
       const glm::vec2 p(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       const bool stripe = std::abs(p.x - 0.6f * p.y - 30.0f) < 2.0f;
       frame.colour.At(x, y) = stripe ? glm::vec4(0.1f, 0.6f, 0.2f, 1.0f) : glm::vec4(0.05f, 0.1f, 0.2f, 1.0f);
@@ -73,15 +73,15 @@ std::unique_ptr<Pass> MakeCmaa2Tscmaa() {
 
 std::unique_ptr<Pass> MakeTscmaa() { return Make(PassSettings(Info().name, Info().settings)); }
 
-struct Sequence {
+struct TscmaaSequence {
   std::vector<PassOutput> outputs;
   std::vector<sim::DispatchReport> reports;
 };
 
-Sequence RunSequence(Pass& pass, Strategy strategy, const std::function<Frame(int)>& make = MovingDisk) {
+TscmaaSequence RunTscmaaSequence(Pass& pass, Strategy strategy, const std::function<TscmaaFrame(int)>& make = MovingDisk) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  Sequence sequence;
-  for (int t = 0; t < kFrames; ++t) sequence.outputs.push_back(pass.Run(machine, make(t).Inputs(), strategy));
+  TscmaaSequence sequence;
+  for (int t = 0; t < kTscmaaFrames; ++t) sequence.outputs.push_back(pass.Run(machine, make(t).Inputs(), strategy));
   sequence.reports = machine.Reports();
   return sequence;
 }
@@ -89,17 +89,17 @@ Sequence RunSequence(Pass& pass, Strategy strategy, const std::function<Frame(in
 TEST(PassesTscmaa, TheTaaTouchesOnlyItsCandidatesAndFrameZeroIsCmaa2) {
   for (const Strategy strategy : kAllStrategies) {
     const std::unique_ptr<Pass> tscmaa = MakeTscmaa();
-    const Sequence run = RunSequence(*tscmaa, strategy);
+    const TscmaaSequence run = RunTscmaaSequence(*tscmaa, strategy);
     sim::Machine machine(sim::GpuConfigByName("ps4-class"));
     int candidates = 0, taaCandidates = 0, changed = 0;
-    for (int t = 0; t < kFrames; ++t) {
+    for (int t = 0; t < kTscmaaFrames; ++t) {
       const PassOutput& out = run.outputs[static_cast<std::size_t>(t)];
       // CMAA2 is spatial: a fresh instance per frame gives its image of that frame.
       const PassOutput cmaa = MakeCmaa2Tscmaa()->Run(machine, MovingDisk(t).Inputs(), strategy);
       const PassLayer& cmaaCandidates = LayerNamed(cmaa, "candidates");
       const PassLayer& taa = LayerNamed(out, "taa-candidates");
-      for (int y = 0; y < kSide; ++y) {
-        for (int x = 0; x < kSide; ++x) {
+      for (int y = 0; y < kTscmaaSide; ++y) {
+        for (int x = 0; x < kTscmaaSide; ++x) {
           const bool isCandidate = LayerValue(cmaaCandidates, x, y) != 0.0f;
           const bool isTaa = LayerValue(taa, x, y) != 0.0f;
           ASSERT_EQ(isTaa, isCandidate && ChosenForTaa(x, y, 0.5)) << t << ": " << x << "," << y;
@@ -143,10 +143,10 @@ TEST(PassesTscmaa, TheChosenShareIsTheFractionOnAnyShape) {
 // helpers), within the 8-bit sRGB store's rounding.
 TEST(PassesTscmaa, CandidatesBlendEightTenthsOfTheVarianceClippedHistory) {
   const auto make = [](int t) {
-    Frame frame = MovingDisk(0);
+    TscmaaFrame frame = MovingDisk(0);
     frame.index = t;
     frame.velocity.Fill({0.0f, 0.0f});
-    // Frame 1 on: the background brighter (the edges stay where they are).
+    // TscmaaFrame 1 on: the background brighter (the edges stay where they are).
     if (t >= 1) {
       for (glm::vec4& texel : frame.colour.Texels()) {
         if (texel.r < 0.5f) texel = glm::vec4(glm::vec3(texel) * 1.6f, 1.0f);
@@ -155,20 +155,20 @@ TEST(PassesTscmaa, CandidatesBlendEightTenthsOfTheVarianceClippedHistory) {
     return frame;
   };
   const std::unique_ptr<Pass> tscmaa = MakeTscmaa();
-  const Sequence run = RunSequence(*tscmaa, Strategy::DeferredQueue, make);
+  const TscmaaSequence run = RunTscmaaSequence(*tscmaa, Strategy::DeferredQueue, make);
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   const PassOutput cmaa1 = MakeCmaa2Tscmaa()->Run(machine, make(1).Inputs(), Strategy::DeferredQueue);
   const PassLayer& taa = LayerNamed(run.outputs[1], "taa-candidates");
   int clipped = 0, unclipped = 0;
-  for (int y = 0; y < kSide; ++y) {
-    for (int x = 0; x < kSide; ++x) {
+  for (int y = 0; y < kTscmaaSide; ++y) {
+    for (int x = 0; x < kTscmaaSide; ++x) {
       if (LayerValue(taa, x, y) == 0.0f) continue;
       const glm::vec3 c(cmaa1.colour.At(x, y)), h(run.outputs[0].colour.At(x, y));
       const temporal::ColourBox box = temporal::VarianceBox(
           temporal::MomentsOf(temporal::Neighbourhood::Box3x3,
                               [&](glm::ivec2 o) {
-                                return sim::RgbToYCoCg(glm::vec3(cmaa1.colour.At(std::clamp(x + o.x, 0, kSide - 1),
-                                                                                 std::clamp(y + o.y, 0, kSide - 1))));
+                                return sim::RgbToYCoCg(glm::vec3(cmaa1.colour.At(std::clamp(x + o.x, 0, kTscmaaSide - 1),
+                                                                                 std::clamp(y + o.y, 0, kTscmaaSide - 1))));
                               }),
           1.0f);
       const glm::vec3 hy = sim::RgbToYCoCg(h);
@@ -186,7 +186,7 @@ TEST(PassesTscmaa, CandidatesBlendEightTenthsOfTheVarianceClippedHistory) {
 
 TEST(PassesTscmaa, StrategiesGiveBitIdenticalSequences) {
   const std::unique_ptr<Pass> stencil = MakeTscmaa(), queue = MakeTscmaa();
-  const Sequence a = RunSequence(*stencil, Strategy::StencilCulled), b = RunSequence(*queue, Strategy::DeferredQueue);
+  const TscmaaSequence a = RunTscmaaSequence(*stencil, Strategy::StencilCulled), b = RunTscmaaSequence(*queue, Strategy::DeferredQueue);
   for (std::size_t t = 0; t < a.outputs.size(); ++t) {
     const StrategyDifference difference = CompareOutputs(a.outputs[t], b.outputs[t]);
     EXPECT_TRUE(difference.Identical()) << "frame " << t << ": " << difference.Describe();
@@ -199,9 +199,9 @@ TEST(PassesTscmaa, OneAndTwoThreadsGiveIdenticalSequences) {
     const auto runWith = [&](int threads) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
       const std::unique_ptr<Pass> pass = MakeTscmaa();
-      return RunSequence(*pass, strategy);
+      return RunTscmaaSequence(*pass, strategy);
     };
-    const Sequence one = runWith(1), two = runWith(2);
+    const TscmaaSequence one = runWith(1), two = runWith(2);
     for (std::size_t t = 0; t < one.outputs.size(); ++t) {
       EXPECT_TRUE(CompareOutputs(one.outputs[t], two.outputs[t]).Identical()) << "frame " << t;
     }

@@ -27,7 +27,7 @@ using testing::RandomSoup;
 using testing::Random;
 using testing::ScreenToClip;
 
-DepthStencilSurface MakeSurface(int width, int height, int samples, int depthSamples, int maxZPlanes,
+DepthStencilSurface MakeDepthSurface(int width, int height, int samples, int depthSamples, int maxZPlanes,
                                 const char* pattern = "standard") {
   DepthSurfaceConfig config;
   config.width = width;
@@ -52,7 +52,7 @@ TEST(ZPlanes, CompressedDepthEqualsExactPerSampleDepth) {
     Random rng(seed);
     const Mesh mesh = RandomSoup(rng, 6, kWidth, kHeight, 30.0);
     for (auto [s, z] : {std::pair{16, 4}, {8, 2}, {4, 1}}) {
-      DepthStencilSurface surface = MakeSurface(kWidth, kHeight, s, z, kMaxZPlanesPerTile, "eqaa");
+      DepthStencilSurface surface = MakeDepthSurface(kWidth, kHeight, s, z, kMaxZPlanesPerTile, "eqaa");
       const RasterResult result = Rasterize(mesh.Input(), CullNone(), surface);
       ASSERT_EQ(result.counters.zPlaneDecompressions, 0u);
       const auto reference = testing::ReferenceRasterize(mesh.Input(), CullNone(), surface.Pattern(), kWidth, kHeight);
@@ -73,8 +73,8 @@ TEST(ZPlanes, CompressionIsInvisibleWhenEverySampleIsAnchored) {
   constexpr int kWidth = 64, kHeight = 48;
   Random rng(11);
   const Mesh mesh = RandomSoup(rng, 60, kWidth, kHeight, 10.0);
-  DepthStencilSurface planes = MakeSurface(kWidth, kHeight, 8, 8, 4);
-  DepthStencilSurface perSample = MakeSurface(kWidth, kHeight, 8, 8, 0);
+  DepthStencilSurface planes = MakeDepthSurface(kWidth, kHeight, 8, 8, 4);
+  DepthStencilSurface perSample = MakeDepthSurface(kWidth, kHeight, 8, 8, 0);
   const RasterResult a = Rasterize(mesh.Input(), CullNone(), planes);
   const RasterResult b = Rasterize(mesh.Input(), CullNone(), perSample);
   EXPECT_GT(a.counters.zPlaneDecompressions, 0u);
@@ -105,7 +105,7 @@ TEST(ZPlanes, PlaneLimitDecompresses) {
       mesh.indices.insert(mesh.indices.end(), {0u, static_cast<std::uint32_t>(1 + k), static_cast<std::uint32_t>(1 + (k + 1) % planes)});
     }
     for (int maxPlanes : {planes, planes + 1}) {
-      DepthStencilSurface surface = MakeSurface(kSize, kSize, 8, 2, maxPlanes);
+      DepthStencilSurface surface = MakeDepthSurface(kSize, kSize, 8, 2, maxPlanes);
       const RasterResult result = Rasterize(mesh.Input(), CullNone(), surface);
       const bool overflow = maxPlanes == planes;
       EXPECT_EQ(result.counters.zPlaneDecompressions, overflow ? 1u : 0u) << "limit " << maxPlanes;
@@ -170,7 +170,7 @@ TEST(ZPlanes, ClearIsAPlaneOnceTheTileIsPartlyWritten) {
       {"all, limit 0", FlatTriangles({{"all", 0.5}}), 0, 1, 0, 0},
   };
   for (const Case& c : cases) {
-    DepthStencilSurface surface = MakeSurface(8, 8, 4, 1, c.maxPlanes);
+    DepthStencilSurface surface = MakeDepthSurface(8, 8, 4, 1, c.maxPlanes);
     DrawState state = CullNone();
     state.depth.hiZEnable = false;
     const RasterResult result = Rasterize(c.mesh.Input(), state, surface);
@@ -195,7 +195,7 @@ TEST(ZPlanes, DecompressionTakesEffectInsideTheQuad) {
     mesh.indices.push_back(static_cast<std::uint32_t>(mesh.clip.size()));
     mesh.clip.push_back(ScreenToClip(x, y, 0.25, 8, 8));
   }
-  DepthStencilSurface surface = MakeSurface(8, 8, 4, 1, 2);
+  DepthStencilSurface surface = MakeDepthSurface(8, 8, 4, 1, 2);
   DrawState state = CullNone();
   state.depth.hiZEnable = false;
   const RasterResult result = Rasterize(mesh.Input(), state, surface);
@@ -229,7 +229,7 @@ TEST(ZPlanes, CompactionDropsHiddenPlanes) {
     mesh.clip.insert(mesh.clip.end(), {{-1, -1, z, 1}, {3, -1, z + 0.01f, 1}, {-1, 3, z, 1}});
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
   }
-  DepthStencilSurface surface = MakeSurface(16, 16, 4, 4, 2);
+  DepthStencilSurface surface = MakeDepthSurface(16, 16, 4, 4, 2);
   DrawState state;
   state.depth.hiZEnable = false;
   const RasterResult result = Rasterize(mesh.Input(), state, surface);
@@ -410,7 +410,7 @@ TEST(ZPlanes, MatchesTheDocumentedModel) {
     for (auto [s, z] : {std::pair{4, 1}, {8, 2}, {16, 4}, {2, 2}}) {
       for (int maxPlanes : {0, 1, 2, 3, 4}) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed << " S " << s << " Z " << z << " planes " << maxPlanes);
-        DepthStencilSurface surface = MakeSurface(kWidth, kHeight, s, z, maxPlanes, seed % 2 ? "eqaa" : "standard");
+        DepthStencilSurface surface = MakeDepthSurface(kWidth, kHeight, s, z, maxPlanes, seed % 2 ? "eqaa" : "standard");
         DrawState state = CullNone();
         state.depth.hiZEnable = false;
         const RasterResult result = Rasterize(mesh.Input(), state, surface);
@@ -443,7 +443,7 @@ TEST(ZPlanes, MatchesTheDocumentedModel) {
 }
 
 TEST(ZPlanes, NearestAnchorIsTheClosestAnchoredSample) {
-  const DepthStencilSurface surface = MakeSurface(8, 8, 16, 4, 4, "eqaa");
+  const DepthStencilSurface surface = MakeDepthSurface(8, 8, 16, 4, 4, "eqaa");
   const SamplePattern& pattern = surface.Pattern();
   for (int p = 0; p < kQuadPixels; ++p) {
     for (int s = 0; s < 16; ++s) {
@@ -467,7 +467,7 @@ TEST(HiZ, RejectsHiddenTiles) {
   Mesh mesh;
   mesh.clip = {{-1, -1, 0.2f, 1}, {3, -1, 0.2f, 1}, {-1, 3, 0.2f, 1}, {-1, -1, 0.6f, 1}, {3, -1, 0.6f, 1}, {-1, 3, 0.6f, 1}};
   mesh.indices = {0, 1, 2, 3, 4, 5};
-  DepthStencilSurface surface = MakeSurface(32, 24, 4, 4, 4);
+  DepthStencilSurface surface = MakeDepthSurface(32, 24, 4, 4, 4);
   const RasterCounters c = Rasterize(mesh.Input(), DrawState{}, surface).counters;
   EXPECT_EQ(c.tilesHiZRejected, 4u * 3u);
   EXPECT_EQ(c.samplesDepthPassed, 32u * 24u * 4u);
@@ -485,7 +485,7 @@ TEST(HiZ, RejectsHiddenTiles) {
 TEST(HiStencil, RejectsTilesWhereNoPixelCanPass) {
   constexpr int kWidth = 32, kHeight = 32;
   for (bool pretest : {true, false}) {
-    DepthStencilSurface surface = MakeSurface(kWidth, kHeight, 4, 4, 4);
+    DepthStencilSurface surface = MakeDepthSurface(kWidth, kHeight, 4, 4, 4);
     surface.SetHiStencilPretests({HiStencilPretest{pretest, CompareFunc::Equal, 1, 0xFF}, HiStencilPretest{}});
     for (int y = 0; y < kHeight; ++y) {
       for (int x = 0; x < kWidth; ++x) surface.SetStencil(x, y, static_cast<std::uint8_t>(((x / 8) + (y / 8)) % 2));
@@ -503,7 +503,7 @@ TEST(HiStencil, RejectsTilesWhereNoPixelCanPass) {
 }
 
 TEST(Stencil, OpsApplyPerPixel) {
-  DepthStencilSurface surface = MakeSurface(8, 8, 1, 1, 4);
+  DepthStencilSurface surface = MakeDepthSurface(8, 8, 1, 1, 4);
   Mesh mesh;
   mesh.clip = {{-1, -1, 0.5f, 1}, {3, -1, 0.5f, 1}, {-1, 3, 0.5f, 1}};
   mesh.indices = {0, 1, 2};
@@ -524,7 +524,7 @@ TEST(Clipping, NearPlaneCutsAndGuardBandKeepsCoverage) {
   Mesh mesh;
   mesh.clip = {{-1, -1, -0.5f, 1}, {3, -1, 1.0f, 1}, {-1, 3, -0.5f, 1}};
   mesh.indices = {0, 1, 2};
-  DepthStencilSurface surface = MakeSurface(kWidth, kHeight, 1, 1, 4);
+  DepthStencilSurface surface = MakeDepthSurface(kWidth, kHeight, 1, 1, 4);
   DrawState state = CullNone();
   state.depth.func = CompareFunc::Always;
   const RasterResult result = Rasterize(mesh.Input(), state, surface);
@@ -558,7 +558,7 @@ TEST(Barycentrics, PerspectiveCorrect) {
   // Vertex 1 twice as far (w = 2): screen-space midpoints are not attribute midpoints.
   mesh.clip = {{-1, -1, 0.5f, 1}, {2, -2, 1.0f, 2}, {-1, 1, 0.5f, 1}};
   mesh.indices = {0, 1, 2};
-  DepthStencilSurface surface = MakeSurface(16, 16, 1, 1, 4);
+  DepthStencilSurface surface = MakeDepthSurface(16, 16, 1, 1, 4);
   const RasterResult result = Rasterize(mesh.Input(), CullNone(), surface);
   ASSERT_EQ(result.triangles.size(), 1u);
   const TriangleSetup& tri = result.triangles[0];
@@ -580,7 +580,7 @@ TEST(Determinism, IdenticalForAnyThreadCount) {
   const Mesh mesh = RandomSoup(rng, 3000, kWidth, kHeight, 15.0);
   auto run = [&](int threads, std::vector<float>& depth) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-    DepthStencilSurface surface = MakeSurface(kWidth, kHeight, 8, 4, 4);
+    DepthStencilSurface surface = MakeDepthSurface(kWidth, kHeight, 8, 4, 4);
     RasterResult result = Rasterize(mesh.Input(), CullNone(), surface);
     for (int y = 0; y < kHeight; ++y) {
       for (int x = 0; x < kWidth; ++x) {

@@ -21,7 +21,6 @@
 namespace raster {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 Footprint Equal(const std::vector<std::array<double, 2>>& positions) {
   Footprint footprint;
@@ -47,7 +46,7 @@ double Weight(double angle) { return 1.0 + kAxisEmphasis * std::cos(4 * angle); 
 double CentreBoxError(int orientations) {
   double weighted = 0.0, weights = 0.0;
   for (int k = 0; k < orientations; ++k) {
-    const double angle = (k + 0.5) * kPi / orientations;
+    const double angle = (k + 0.5) * std::numbers::pi / orientations;
     weighted += Weight(angle) * CentreBoxEdgeError(angle);
     weights += Weight(angle);
   }
@@ -56,7 +55,7 @@ double CentreBoxError(int orientations) {
 
 TEST(PatternError, CentreSampleMatchesTheClosedFormAtEveryAngle) {
   for (const double degrees : {0.0, 3.0, 10.0, 26.565, 44.9, 45.0, 60.0, 90.0, 121.0, 179.0}) {
-    const double angle = degrees * kPi / 180;
+    const double angle = degrees * std::numbers::pi / 180;
     EXPECT_NEAR(EdgeError(kCentre, angle, ReferenceFilter::kBox), CentreBoxEdgeError(angle), 1e-9) << degrees;
   }
   EXPECT_NEAR(FootprintError(kCentre, ReferenceFilter::kBox), CentreBoxError(kErrorOrientations), 1e-9);
@@ -71,7 +70,7 @@ TEST(PatternError, AxisAlignedEdgesCountDistinctColumns) {
   EXPECT_NEAR(EdgeError(kCentre, vertical, ReferenceFilter::kBox), 1.0 / 12, 1e-12);
   const Footprint grid = Equal({{-0.25, -0.25}, {0.25, -0.25}, {-0.25, 0.25}, {0.25, 0.25}});
   EXPECT_NEAR(EdgeError(grid, vertical, ReferenceFilter::kBox), 1.0 / 48, 1e-12);
-  EXPECT_NEAR(EdgeError(grid, kPi / 2, ReferenceFilter::kBox), 1.0 / 48, 1e-12);
+  EXPECT_NEAR(EdgeError(grid, std::numbers::pi / 2, ReferenceFilter::kBox), 1.0 / 48, 1e-12);
   const Footprint rgss = BoxFootprint(MakeBuiltinPattern("rotated-grid", 4), 0);
   EXPECT_NEAR(EdgeError(rgss, vertical, ReferenceFilter::kBox), 1.0 / 192, 1e-12);
   // Four samples in one column are one sample for these edges.

@@ -21,7 +21,7 @@
 namespace raster {
 namespace {
 
-constexpr int kSize = 64;  // 32x32 = 1024 quads per full-screen triangle pair
+constexpr int kQuadStreamSize = 64;  // 32x32 = 1024 quads per full-screen triangle pair
 
 // `layers` copies of a full-screen quad (two triangles), no depth test: every layer adds the
 // 32x32 quads of the screen to the stream, and those on the diagonal twice.
@@ -31,9 +31,9 @@ struct StackedQuads {
   explicit StackedQuads(int layers) {
     for (int layer = 0; layer < layers; ++layer) {
       const auto base = static_cast<std::uint32_t>(clip.size());
-      constexpr int kCorners[4][2] = {{0, 0}, {kSize, 0}, {0, kSize}, {kSize, kSize}};
+      constexpr int kCorners[4][2] = {{0, 0}, {kQuadStreamSize, 0}, {0, kQuadStreamSize}, {kQuadStreamSize, kQuadStreamSize}};
       for (const auto& corner : kCorners) {
-        clip.push_back(testing::ScreenToClip(corner[0], corner[1], 0.5, kSize, kSize));
+        clip.push_back(testing::ScreenToClip(corner[0], corner[1], 0.5, kQuadStreamSize, kQuadStreamSize));
       }
       for (std::uint32_t i : {0u, 1u, 2u, 2u, 1u, 3u}) indices.push_back(base + i);
     }
@@ -41,10 +41,10 @@ struct StackedQuads {
   DrawInput Input() const { return {clip, indices, 0}; }
 };
 
-RasterResult Draw(const StackedQuads& mesh, std::size_t maxQuads) {
+RasterResult DrawStacked(const StackedQuads& mesh, std::size_t maxQuads) {
   DepthSurfaceConfig config;
-  config.width = kSize;
-  config.height = kSize;
+  config.width = kQuadStreamSize;
+  config.height = kQuadStreamSize;
   DepthStencilSurface surface(config, MakeBuiltinPattern("standard", 1));
   DrawState state;
   state.cull = CullMode::None;
@@ -57,14 +57,14 @@ RasterResult Draw(const StackedQuads& mesh, std::size_t maxQuads) {
 TEST(RasterQuadStream, ADrawAtTheLimitIsKeptOnePastItIsRefused) {
   const StackedQuads mesh(6);
   // Quads on the shared diagonal come once per triangle, so the count is taken from a free draw.
-  const std::size_t kQuads = Draw(mesh, RasterOptions{}.maxQuads).QuadCount();
-  EXPECT_GT(kQuads, std::size_t{6 * (kSize / 2) * (kSize / 2)});
+  const std::size_t kQuads = DrawStacked(mesh, RasterOptions{}.maxQuads).QuadCount();
+  EXPECT_GT(kQuads, std::size_t{6 * (kQuadStreamSize / 2) * (kQuadStreamSize / 2)});
   for (int threads : {1, 2}) {
     SCOPED_TRACE(threads);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-    EXPECT_EQ(Draw(mesh, kQuads).QuadCount(), kQuads);
+    EXPECT_EQ(DrawStacked(mesh, kQuads).QuadCount(), kQuads);
     try {
-      Draw(mesh, kQuads - 1);
+      DrawStacked(mesh, kQuads - 1);
       ADD_FAILURE() << "no error";
     } catch (const QuadStreamError& error) {
       const std::string message = error.what();

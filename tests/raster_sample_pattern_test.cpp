@@ -69,7 +69,7 @@ std::uint64_t PackedPriority(const SamplePattern& pattern) {
 }
 
 // The RasterError message of `action`, or a test failure when it does not throw one.
-std::string ErrorOf(const std::function<void()>& action) {
+std::string PatternErrorOf(const std::function<void()>& action) {
   try {
     action();
   } catch (const RasterError& e) {
@@ -81,7 +81,7 @@ std::string ErrorOf(const std::function<void()>& action) {
 
 void ExpectErrorMentions(const std::function<void()>& action,
                          const std::vector<std::string>& parts) {
-  const std::string message = ErrorOf(action);
+  const std::string message = PatternErrorOf(action);
   for (const std::string& part : parts) {
     EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
   }
@@ -356,24 +356,24 @@ TEST(SamplePattern, UnknownBuiltinOrCountListsTheCatalogue) {
 
 TEST(SamplePattern, CreateRejectsIllegalCounts) {
   const Table three = {{0, 0}, {1, 1}, {2, 2}};
-  EXPECT_EQ(ErrorOf([&] { SamplePattern::Create("tri", 3, {three, three, three, three}); }),
+  EXPECT_EQ(PatternErrorOf([&] { SamplePattern::Create("tri", 3, {three, three, three, three}); }),
             "pattern 'tri': 3 samples; legal counts are 1, 2, 4, 8, 16");
-  EXPECT_EQ(ErrorOf([&] { SamplePattern::CreateUniform("tri", three); }),
+  EXPECT_EQ(PatternErrorOf([&] { SamplePattern::CreateUniform("tri", three); }),
             "pattern 'tri': 3 samples; legal counts are 1, 2, 4, 8, 16");
-  EXPECT_EQ(ErrorOf([] { SamplePattern::CreateUniform("none", {}); }),
+  EXPECT_EQ(PatternErrorOf([] { SamplePattern::CreateUniform("none", {}); }),
             "pattern 'none': 0 samples; legal counts are 1, 2, 4, 8, 16");
 }
 
 TEST(SamplePattern, CreateNamesThePixelWithTheWrongOffsetCount) {
   const Table two = {{0, 0}, {1, 1}};
-  EXPECT_EQ(ErrorOf([&] { SamplePattern::Create("short", 2, {two, two, {{0, 0}}, two}); }),
+  EXPECT_EQ(PatternErrorOf([&] { SamplePattern::Create("short", 2, {two, two, {{0, 0}}, two}); }),
             "pattern 'short': quad pixel 2 has 1 offsets, expected 2");
 }
 
 TEST(SamplePattern, CreateNamesTheOffGridSample) {
   const Table ok = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
   const Table bad = {{0, 0}, {1, 1}, {2, 2}, {8, -2}};
-  EXPECT_EQ(ErrorOf([&] { SamplePattern::Create("NAME", 4, {ok, bad, ok, ok}); }),
+  EXPECT_EQ(PatternErrorOf([&] { SamplePattern::Create("NAME", 4, {ok, bad, ok, ok}); }),
             "pattern 'NAME': quad pixel 1 sample 3 offset (8, -2) is off the sample grid: x and y "
             "must be integers in -8..7 (1/16 px)");
   const Table centre = {{0, 0}};
@@ -449,11 +449,11 @@ TEST(SamplePattern, JsonErrorsNameTheFileAndSample) {
   const auto parse = [](std::string text, int samples) {
     return [text = std::move(text), samples] { ParsePatternJson(text, samples, "f.json"); };
   };
-  EXPECT_EQ(ErrorOf(parse(R"({"name":"x","samples":4,"pixels":[[[0,0],[0,0],[0,0]],
+  EXPECT_EQ(PatternErrorOf(parse(R"({"name":"x","samples":4,"pixels":[[[0,0],[0,0],[0,0]],
               [[0,0],[0,0],[0,0],[0,0]],[[0,0],[0,0],[0,0],[0,0]],[[0,0],[0,0],[0,0],[0,0]]]})",
                           4)),
             "pattern file 'f.json' has 3 offsets for quad pixel 0, expected 4");
-  EXPECT_EQ(ErrorOf(parse(R"({"name":"x","samples":8,"offsets":[[0,0]]})", 4)),
+  EXPECT_EQ(PatternErrorOf(parse(R"({"name":"x","samples":8,"offsets":[[0,0]]})", 4)),
             "pattern file 'f.json' defines 8 samples but --samples is 4");
   ExpectErrorMentions(parse(R"({"name":"x","samples":2,"offsets":[[0,0]]})", 2),
                       {"'f.json'", "1 offsets, expected 2"});
@@ -512,7 +512,7 @@ TEST(SamplePattern, DeepNestingIsRefusedWithAShortMessage) {
                       {"'f.json'", "nests deeper than 64 levels"});
   const std::string deepOffsets = R"({"name":"x","samples":1,"offsets":)" + std::string(60, '[') +
                                   std::string(60, ']') + "}";
-  const std::string message = ErrorOf([&] { ParsePatternJson(deepOffsets, 1, "f.json"); });
+  const std::string message = PatternErrorOf([&] { ParsePatternJson(deepOffsets, 1, "f.json"); });
   EXPECT_NE(message.find("'f.json'"), std::string::npos) << message;
   EXPECT_LT(message.size(), 200u) << message;
 }

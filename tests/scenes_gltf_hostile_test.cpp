@@ -38,18 +38,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using Bytes = std::vector<std::uint8_t>;
 
-constexpr float kAspect = 16.0f / 9.0f;
-const fs::path kGltf2Models = fs::path(AASIM_TESTMODELS_DIR) / "glTF2";
-
-fs::path TestDir() {
-  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "aasim_gltf_hostile_test" /
-                       (std::string(info->test_suite_name()) + "." + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 fs::path WriteBytes(const fs::path& path, const Bytes& bytes) {
   std::ofstream(path, std::ios::binary)
       .write(reinterpret_cast<const char*>(bytes.data()),
@@ -57,14 +45,12 @@ fs::path WriteBytes(const fs::path& path, const Bytes& bytes) {
   return path;
 }
 
-fs::path WriteText(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
 Bytes ToBytes(const std::string& text) { return {text.begin(), text.end()}; }
 
 using scenes_test::Base64;
+using scenes_test::kAspect;
+using scenes_test::TestDir;
+using scenes_test::WriteText;
 
 template <typename T>
 void Append(Bytes& bytes, const std::vector<T>& values) {
@@ -246,7 +232,7 @@ scenes::Scene LoadText(const std::string& text, const std::string& name = "doc.g
 }
 
 // The SceneError message, or a test failure if the load succeeds or throws anything else.
-std::string ErrorOf(const std::function<void()>& load) {
+std::string LoadErrorOf(const std::function<void()>& load) {
   try {
     load();
   } catch (const scenes::SceneError& e) {
@@ -260,11 +246,11 @@ std::string ErrorOf(const std::function<void()>& load) {
 }
 
 std::string FileError(const fs::path& path) {
-  return ErrorOf([&] { scenes::LoadGltf(path, kAspect); });
+  return LoadErrorOf([&] { scenes::LoadGltf(path, kAspect); });
 }
 
 std::string TextError(const std::string& text) {
-  return ErrorOf([&] { LoadText(text); });
+  return LoadErrorOf([&] { LoadText(text); });
 }
 
 std::string DocumentError(const json& document) { return TextError(document.dump()); }
@@ -379,7 +365,7 @@ TEST(GltfHostileGlb, EveryLayoutDefectNamesItsFieldAndByte) {
     Bytes damaged = good;
     c.damage(damaged);
     const std::string message =
-        ErrorOf([&] { scenes::LoadGltfFromMemory(damaged, true, TestDir(), "x.glb", kAspect); });
+        LoadErrorOf([&] { scenes::LoadGltfFromMemory(damaged, true, TestDir(), "x.glb", kAspect); });
     EXPECT_CONTAINS(message, "x.glb: " + c.problem) << c.what;
   }
 }
@@ -389,7 +375,7 @@ TEST(GltfHostileGlb, BinChunkMustHoldTheBufferAndNoMoreThanItsPadding) {
   json document = TriangleDocument(&bin);
   document["buffers"][0]["byteLength"] = 40;
   document["bufferViews"][0]["byteLength"] = 36;
-  std::string message = ErrorOf([&] {
+  std::string message = LoadErrorOf([&] {
     scenes::LoadGltfFromMemory(MakeGlb(document.dump(), bin), true, TestDir(), "x.glb", kAspect);
   });
   EXPECT_CONTAINS(message,
@@ -397,14 +383,14 @@ TEST(GltfHostileGlb, BinChunkMustHoldTheBufferAndNoMoreThanItsPadding) {
   document["buffers"][0]["byteLength"] = 32;
   document["bufferViews"][0]["byteLength"] = 32;
   document["accessors"][0]["count"] = 2;
-  message = ErrorOf([&] {
+  message = LoadErrorOf([&] {
     scenes::LoadGltfFromMemory(MakeGlb(document.dump(), bin), true, TestDir(), "x.glb", kAspect);
   });
   EXPECT_CONTAINS(message, "GLB BIN chunk holds 36 (at most 3 bytes of padding allowed)");
   Bytes glb = MakeGlb(TriangleDocument(&bin).dump(), {});
   glb.resize(glb.size() - 8);
   PutU32(glb, 8, static_cast<std::uint32_t>(glb.size()));
-  message = ErrorOf([&] { scenes::LoadGltfFromMemory(glb, true, TestDir(), "x.glb", kAspect); });
+  message = LoadErrorOf([&] { scenes::LoadGltfFromMemory(glb, true, TestDir(), "x.glb", kAspect); });
   EXPECT_CONTAINS(message, "/buffers/0: a buffer without uri, but the GLB has no BIN chunk");
 }
 
@@ -549,10 +535,10 @@ TEST(GltfHostileImage, DimensionsAreCheckedFromTheHeaderBeforeDecoding) {
   EXPECT_CONTAINS(message,
                   "doc.gltf: image 0 'checker': image size 20000x20000 exceeds 16384 "
                   "texels on a side, the most aasim decodes");
-  message = ErrorOf(
+  message = LoadErrorOf(
       [] { scenes::DecodeImage(PngHeaderOnly(8192, 8193), "big", scenes::ColourEncoding::Srgb); });
   EXPECT_CONTAINS(message, "big: image size 8192x8193 is 67117056 texels, more than the 67108864");
-  message = ErrorOf(
+  message = LoadErrorOf(
       [] { scenes::DecodeImage(PngHeaderOnly(16385, 1), "wide", scenes::ColourEncoding::Srgb); });
   EXPECT_CONTAINS(message, "wide: image size 16385x1 exceeds 16384 texels on a side");
 }
@@ -587,7 +573,7 @@ TEST(GltfHostileImage, ChunkLengthsAreCheckedBeforeDecoding) {
                      0x60, 0xe5, 0xe2, 0x17, 0x81, 0x02, 0x16, 0x1b, 0x20, 0x80, 0x71, 0x00, 0x1a, 0xa8, 0x02,
                      0x54, 0xb6, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00, 0x24, 0x03, 0x00, 0x00, 0xae};
   ASSERT_EQ(png.size(), 74u);
-  EXPECT_CONTAINS(ErrorOf([&] { scenes::DecodeImage(png, "fuzzed.png", scenes::ColourEncoding::Srgb); }),
+  EXPECT_CONTAINS(LoadErrorOf([&] { scenes::DecodeImage(png, "fuzzed.png", scenes::ColourEncoding::Srgb); }),
                   "fuzzed.png: cannot decode: PNG chunk at byte 33 declares 1947861012 bytes, more than the 29 the file holds");
 }
 
@@ -595,14 +581,14 @@ TEST(GltfHostileImage, BrokenImagesAreOneLineErrors) {
   Bytes truncated = EncodePng(4, 4, 4, Bytes(64, 7));
   truncated.resize(truncated.size() - 20);
   EXPECT_CONTAINS(
-      ErrorOf([&] { scenes::DecodeImage(truncated, "cut", scenes::ColourEncoding::Srgb); }),
+      LoadErrorOf([&] { scenes::DecodeImage(truncated, "cut", scenes::ColourEncoding::Srgb); }),
       "cut: cannot decode: ");
-  EXPECT_CONTAINS(ErrorOf([] {
+  EXPECT_CONTAINS(LoadErrorOf([] {
                     scenes::DecodeImage(Bytes{1, 2, 3}, "junk", scenes::ColourEncoding::Srgb);
                   }),
                   "junk: cannot decode: no PNG or JPEG signature");
   EXPECT_CONTAINS(
-      ErrorOf([] { scenes::DecodeImage(Bytes{}, "empty", scenes::ColourEncoding::Srgb); }),
+      LoadErrorOf([] { scenes::DecodeImage(Bytes{}, "empty", scenes::ColourEncoding::Srgb); }),
       "empty: cannot decode");
   // Every prefix of a valid PNG and JPEG: an error or a texture, never a crash.
   for (const Bytes& whole : {EncodePng(3, 2, 2, Bytes(12, 99)), EncodeJpeg(3, 2, Bytes(18, 99))}) {
@@ -771,13 +757,13 @@ TEST(GltfHostileSchema, AssimpWrongTypesAndSchemaFailuresAreRefused) {
       {"SchemaFailures/sceneWrongType.gltf", "/scene: expected an integer >= 0"}};
   std::size_t files = 0;
   for (const char* dir : {"wrongTypes", "SchemaFailures"}) {
-    for (const fs::directory_entry& entry : fs::directory_iterator(kGltf2Models / dir)) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(scenes_test::Gltf2Models() / dir)) {
       files += entry.path().extension() == ".gltf" ? 1 : 0;
     }
   }
   EXPECT_EQ(files, cases.size()) << "a new file in wrongTypes/ or SchemaFailures/ needs a case";
   for (const auto& [file, problem] : cases) {
-    const fs::path path = kGltf2Models / file;
+    const fs::path path = scenes_test::Gltf2Models() / file;
     EXPECT_CONTAINS(FileError(path), path.string() + ": " + problem);
   }
 }

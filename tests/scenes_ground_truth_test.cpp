@@ -33,14 +33,7 @@
 #include "scenes/normals.h"
 #include "scenes/scene.h"
 #include "scenes/shading.h"
-
-// Readable failure output for vectors compared with EXPECT_EQ (found by argument lookup).
-// Static: the suite is one binary and other test files may print glm types their own way.
-namespace glm {
-static void PrintTo(const vec3& v, std::ostream* out) {
-  *out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-}
-}  // namespace glm
+#include "scenes_test_util.h"
 
 namespace {
 
@@ -100,7 +93,7 @@ scenes::Scene HalfPlaneScene(int width, int height, glm::dvec2 a, glm::dvec2 b, 
   return scene;
 }
 
-scenes::GroundTruthSettings Settings(int width, int height, int samples) {
+scenes::GroundTruthSettings GroundTruthSettingsFor(int width, int height, int samples) {
   scenes::GroundTruthSettings settings;
   settings.width = width;
   settings.height = height;
@@ -108,7 +101,7 @@ scenes::GroundTruthSettings Settings(int width, int height, int samples) {
   return settings;
 }
 
-scenes::GroundTruthImage Render(const scenes::Scene& scene, const scenes::GroundTruthSettings& settings) {
+scenes::GroundTruthImage RenderGroundTruth(const scenes::Scene& scene, const scenes::GroundTruthSettings& settings) {
   return scenes::RenderGroundTruth(scene, scene.camera, settings);
 }
 
@@ -220,8 +213,8 @@ TEST(GroundTruthNormals, VertexNormalsPreferTheMeshsOwn) {
 TEST(GroundTruth, CoveredPixelsShadeExactlyLikeShadeLambertAndTheEdgeColumnIsMarked) {
   constexpr int kWidth = 48, kHeight = 32;
   const scenes::Scene scene = HalfPlaneScene(kWidth, kHeight, {20.3, 0.0}, {20.3, 1.0}, {40.0, 16.0});
-  const scenes::GroundTruthSettings settings = Settings(kWidth, kHeight, 256);
-  const scenes::GroundTruthImage image = Render(scene, settings);
+  const scenes::GroundTruthSettings settings = GroundTruthSettingsFor(kWidth, kHeight, 256);
+  const scenes::GroundTruthImage image = RenderGroundTruth(scene, settings);
   ASSERT_EQ(image.colour.size(), std::size_t{kWidth} * kHeight);
 
   const glm::vec3 lit = scenes::ShadeLambert(scene.lighting, glm::vec3(scenes::BaseColour(scene, 0, glm::vec2(0.0f))),
@@ -253,7 +246,7 @@ TEST(GroundTruth, CoveredPixelsShadeExactlyLikeShadeLambertAndTheEdgeColumnIsMar
 TEST(GroundTruth, ScreenYPointsDown) {
   constexpr int kWidth = 24, kHeight = 16;
   const scenes::Scene scene = HalfPlaneScene(kWidth, kHeight, {0.0, 10.6}, {1.0, 10.6}, {12.0, 15.0});
-  const scenes::GroundTruthImage image = Render(scene, Settings(kWidth, kHeight, 16));
+  const scenes::GroundTruthImage image = RenderGroundTruth(scene, GroundTruthSettingsFor(kWidth, kHeight, 16));
   for (int x = 0; x < kWidth; ++x) {
     EXPECT_EQ(image.coverage[image.Index(x, 9)], 0.0f);
     EXPECT_GT(image.coverage[image.Index(x, 10)], 0.0f);
@@ -267,7 +260,7 @@ TEST(GroundTruth, BackFacingTrianglesShadeWithTheNegatedNormal) {
   constexpr int kWidth = 16, kHeight = 16;
   const scenes::Scene scene =
       HalfPlaneScene(kWidth, kHeight, {-1.0, 0.0}, {-1.0, 1.0}, {8.0, 8.0}, /*backFacing=*/true);
-  const scenes::GroundTruthImage image = Render(scene, Settings(kWidth, kHeight, 4));
+  const scenes::GroundTruthImage image = RenderGroundTruth(scene, GroundTruthSettingsFor(kWidth, kHeight, 4));
   const glm::vec3 base = glm::vec3(scenes::BaseColour(scene, 0, glm::vec2(0.0f)));
   const glm::vec3 expected = scenes::ShadeLambert(scene.lighting, base, glm::vec3(0.0f, 0.0f, -1.0f));
   ASSERT_NE(expected, scenes::ShadeLambert(scene.lighting, base, glm::vec3(0.0f, 0.0f, 1.0f)));
@@ -281,7 +274,7 @@ TEST(GroundTruth, CoverageConvergesToTheAnalyticArea) {
   const scenes::Scene scene = HalfPlaneScene(kSize, kSize, a, b, inside);
   double previousMean = 1.0, meanAt16 = 0.0;
   for (const int samples : {16, 64, 256, 1024}) {
-    const scenes::GroundTruthImage image = Render(scene, Settings(kSize, kSize, samples));
+    const scenes::GroundTruthImage image = RenderGroundTruth(scene, GroundTruthSettingsFor(kSize, kSize, samples));
     double sumError = 0.0, maxError = 0.0, rendered = 0.0, exact = 0.0;
     int crossed = 0;
     for (int y = 0; y < kSize; ++y) {
@@ -327,7 +320,7 @@ TEST(GroundTruth, EdgeMaskMarksThePixelsTheEdgeCrosses) {
   constexpr int kSize = 32;
   const glm::dvec2 a{0.0, 7.3}, b{32.0, 19.1}, inside{0.0, 31.0};
   const scenes::GroundTruthImage image =
-      Render(HalfPlaneScene(kSize, kSize, a, b, inside), Settings(kSize, kSize, 256));
+      RenderGroundTruth(HalfPlaneScene(kSize, kSize, a, b, inside), GroundTruthSettingsFor(kSize, kSize, 256));
   int marked = 0;
   for (int y = 0; y < kSize; ++y) {
     for (int x = 0; x < kSize; ++x) {
@@ -360,7 +353,7 @@ TEST(GroundTruth, TexturesAreSampledAtTheInterpolatedTexcoords) {
   }
   scene.textures.push_back({.name = "ramp", .width = 2, .height = 1, .texels = {{0, 0, 0, 1}, {1, 1, 1, 1}}});
   scene.materials[0] = {.name = "textured", .baseColourFactor = glm::vec4(1.0f), .baseColourTexture = 0};
-  const scenes::GroundTruthImage image = Render(scene, Settings(kWidth, kHeight, 256));
+  const scenes::GroundTruthImage image = RenderGroundTruth(scene, GroundTruthSettingsFor(kWidth, kHeight, 256));
   const glm::vec3 white = scenes::ShadeLambert(scene.lighting, glm::vec3(1.0f), glm::vec3(0.0f, 0.0f, 1.0f));
   for (int x = 0; x < kWidth; ++x) {
     // The samples' mean x is within 1/32 px of the centre (one jittered sample per 1/16 stratum).
@@ -371,10 +364,10 @@ TEST(GroundTruth, TexturesAreSampledAtTheInterpolatedTexcoords) {
 
 TEST(GroundTruth, ResultsDoNotDependOnTheThreadCount) {
   const scenes::Scene scene = scenes::MakeBuiltinScene(scenes::kDefaultSceneName, 16.0f / 9.0f);
-  const scenes::GroundTruthSettings settings = Settings(128, 72, 16);
+  const scenes::GroundTruthSettings settings = GroundTruthSettingsFor(128, 72, 16);
   auto renderWith = [&](std::size_t threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return Render(scene, settings);
+    return RenderGroundTruth(scene, settings);
   };
   const scenes::GroundTruthImage one = renderWith(1);
   const scenes::GroundTruthImage two = renderWith(2);
@@ -388,7 +381,7 @@ TEST(GroundTruth, ResultsDoNotDependOnTheThreadCount) {
 TEST(GroundTruth, ProgressIsReportedUpToExactlyOne) {
   const scenes::Scene scene = HalfPlaneScene(40, 40, {20.0, 0.0}, {21.0, 40.0}, {40.0, 0.0});
   std::vector<double> fractions;
-  scenes::RenderGroundTruth(scene, scene.camera, Settings(40, 40, 1),
+  scenes::RenderGroundTruth(scene, scene.camera, GroundTruthSettingsFor(40, 40, 1),
                             [&](double fraction) { fractions.push_back(fraction); });
   ASSERT_EQ(fractions.size(), 9u);  // 3 x 3 tiles of 16 x 16
   EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
@@ -410,7 +403,7 @@ TEST(GroundTruth, BadInputsThrowOneLine) {
   const scenes::Scene scene = HalfPlaneScene(8, 8, {4.0, 0.0}, {4.0, 1.0}, {8.0, 4.0});
   auto expectInvalid = [&](const scenes::GroundTruthSettings& settings, const char* mentions) {
     try {
-      Render(scene, settings);
+      RenderGroundTruth(scene, settings);
       ADD_FAILURE() << "no exception for " << mentions;
     } catch (const std::invalid_argument& e) {
       const std::string message = e.what();
@@ -418,26 +411,26 @@ TEST(GroundTruth, BadInputsThrowOneLine) {
       EXPECT_NE(message.find(mentions), std::string::npos) << message;
     }
   };
-  expectInvalid(Settings(8, 8, 0), "perfect square");
-  expectInvalid(Settings(8, 8, 8), "perfect square");
-  expectInvalid(Settings(8, 8, 512 * 512), "perfect square");
-  expectInvalid(Settings(0, 8, 16), "image size 0x8");
-  expectInvalid(Settings(8, -1, 16), "image size 8x-1");
+  expectInvalid(GroundTruthSettingsFor(8, 8, 0), "perfect square");
+  expectInvalid(GroundTruthSettingsFor(8, 8, 8), "perfect square");
+  expectInvalid(GroundTruthSettingsFor(8, 8, 512 * 512), "perfect square");
+  expectInvalid(GroundTruthSettingsFor(0, 8, 16), "image size 0x8");
+  expectInvalid(GroundTruthSettingsFor(8, -1, 16), "image size 8x-1");
   scenes::Scene badCamera = scene;
   badCamera.camera.zNear = 0.0f;
-  EXPECT_THROW(Render(badCamera, Settings(8, 8, 1)), std::invalid_argument);
+  EXPECT_THROW(RenderGroundTruth(badCamera, GroundTruthSettingsFor(8, 8, 1)), std::invalid_argument);
 
   scenes::Scene badIndex = scene;
   badIndex.meshes[0].indices[2] = 7;
-  EXPECT_THROW(Render(badIndex, Settings(8, 8, 1)), scenes::SceneError);
+  EXPECT_THROW(RenderGroundTruth(badIndex, GroundTruthSettingsFor(8, 8, 1)), scenes::SceneError);
   scenes::Scene badNormals = scene;
   badNormals.meshes[0].normals.pop_back();
-  EXPECT_THROW(Render(badNormals, Settings(8, 8, 1)), scenes::SceneError);
+  EXPECT_THROW(RenderGroundTruth(badNormals, GroundTruthSettingsFor(8, 8, 1)), scenes::SceneError);
 
   // The cache checks its inputs before it touches the disk.
   const ScratchDir dir;
   const scenes::GroundTruthCache cache(dir.Path() / "cache");
-  EXPECT_THROW(cache.LoadOrRender(scene, scene.camera, Settings(8, 8, 2)), std::invalid_argument);
+  EXPECT_THROW(cache.LoadOrRender(scene, scene.camera, GroundTruthSettingsFor(8, 8, 2)), std::invalid_argument);
   EXPECT_FALSE(fs::exists(dir.Path() / "cache"));
 }
 
@@ -447,7 +440,7 @@ TEST(GroundTruthCache, SecondCallReadsIdenticalBitsBack) {
   const ScratchDir dir;
   const scenes::GroundTruthCache cache(dir.Path() / "nested" / "cache");
   const scenes::Scene scene = HalfPlaneScene(24, 16, {0.0, 3.0}, {24.0, 12.0}, {0.0, 16.0});
-  const scenes::GroundTruthSettings settings = Settings(24, 16, 16);
+  const scenes::GroundTruthSettings settings = GroundTruthSettingsFor(24, 16, 16);
 
   const scenes::CachedGroundTruth first = cache.LoadOrRender(scene, scene.camera, settings);
   EXPECT_FALSE(first.cacheHit);
@@ -460,12 +453,12 @@ TEST(GroundTruthCache, SecondCallReadsIdenticalBitsBack) {
   const scenes::CachedGroundTruth second = cache.LoadOrRender(scene, scene.camera, settings);
   EXPECT_TRUE(second.cacheHit);
   EXPECT_TRUE(SameBits(first.image, second.image));
-  EXPECT_TRUE(SameBits(first.image, Render(scene, settings)));
+  EXPECT_TRUE(SameBits(first.image, RenderGroundTruth(scene, settings)));
 }
 
 TEST(GroundTruthCache, KeyCoversEveryInputThatChangesTheImage) {
   const scenes::Scene scene = HalfPlaneScene(24, 16, {0.0, 3.0}, {24.0, 12.0}, {0.0, 16.0});
-  const scenes::GroundTruthSettings settings = Settings(24, 16, 16);
+  const scenes::GroundTruthSettings settings = GroundTruthSettingsFor(24, 16, 16);
   const std::uint64_t key = scenes::GroundTruthKey(scene, scene.camera, settings);
   EXPECT_EQ(key, scenes::GroundTruthKey(scene, scene.camera, settings));
 
@@ -509,7 +502,7 @@ TEST(GroundTruthCache, CorruptFilesAreRenderedAgainWithAOneLineWarning) {
   const ScratchDir dir;
   const scenes::GroundTruthCache cache(dir.Path());
   const scenes::Scene scene = HalfPlaneScene(24, 16, {0.0, 3.0}, {24.0, 12.0}, {0.0, 16.0});
-  const scenes::GroundTruthSettings settings = Settings(24, 16, 16);
+  const scenes::GroundTruthSettings settings = GroundTruthSettingsFor(24, 16, 16);
   const scenes::CachedGroundTruth good = cache.LoadOrRender(scene, scene.camera, settings);
   const fs::path file = good.file;
   const auto size = fs::file_size(file);

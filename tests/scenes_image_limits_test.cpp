@@ -19,7 +19,7 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-void Append(void* context, void* data, int size) {
+void AppendWritten(void* context, void* data, int size) {
   const auto* bytes = static_cast<const std::uint8_t*>(data);
   static_cast<Bytes*>(context)->insert(static_cast<Bytes*>(context)->end(), bytes, bytes + size);
 }
@@ -28,7 +28,7 @@ void Append(void* context, void* data, int size) {
 Bytes FlatJpeg(int width, int height, int quality) {
   const Bytes rgb(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, 90);
   Bytes jpeg;
-  EXPECT_NE(stbi_write_jpg_to_func(&Append, &jpeg, width, height, 3, rgb.data(), quality), 0);
+  EXPECT_NE(stbi_write_jpg_to_func(&AppendWritten, &jpeg, width, height, 3, rgb.data(), quality), 0);
   return jpeg;
 }
 
@@ -48,7 +48,7 @@ Bytes WithDeclaredSize(Bytes jpeg, int width, int height) {
   return jpeg;
 }
 
-std::string ErrorOf(const Bytes& jpeg) {
+std::string DecodeErrorOf(const Bytes& jpeg) {
   try {
     scenes::DecodeImage(jpeg, "bomb.jpg", scenes::ColourEncoding::Srgb);
   } catch (const scenes::SceneError& error) {
@@ -60,7 +60,7 @@ std::string ErrorOf(const Bytes& jpeg) {
 TEST(SceneImageLimits, ASmallJpegDeclaringAHugeSizeIsRefusedFromItsHeader) {
   const Bytes bomb = WithDeclaredSize(FlatJpeg(8, 8, 90), 8192, 8192);
   ASSERT_LT(bomb.size(), 1000u);
-  const std::string error = ErrorOf(bomb);
+  const std::string error = DecodeErrorOf(bomb);
   EXPECT_EQ(error.rfind("bomb.jpg: JPEG image size 8192x8192 is 67108864 texels in " + std::to_string(bomb.size()) +
                             " bytes, more than the 512 texels per byte",
                         0),
@@ -72,7 +72,7 @@ TEST(SceneImageLimits, ASmallJpegDeclaringAHugeSizeIsRefusedFromItsHeader) {
   ASSERT_LE(std::size_t(side) * std::size_t(side), scenes::kMaxJpegTexelsPerByte * bomb.size());
   EXPECT_EQ(scenes::DecodeImage(WithDeclaredSize(bomb, side, side), "ok.jpg", scenes::ColourEncoding::Srgb).width,
             side);
-  EXPECT_NE(ErrorOf(WithDeclaredSize(bomb, side + 1, side + 1)).find("texels per byte"), std::string::npos);
+  EXPECT_NE(DecodeErrorOf(WithDeclaredSize(bomb, side + 1, side + 1)).find("texels per byte"), std::string::npos);
 }
 
 TEST(SceneImageLimits, FlatJpegsOfEverySizeAndQualityDecode) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,7 @@
 
 namespace {
 
-constexpr float kAspect = 16.0f / 9.0f;
-constexpr float kPi = 3.14159265358979f;
+constexpr float kMotionAspect = 16.0f / 9.0f;
 
 bool SameCamera(const scenes::Camera& a, const scenes::Camera& b) {
   return a.eye == b.eye && a.target == b.target && a.up == b.up &&
@@ -27,7 +27,7 @@ bool SameCamera(const scenes::Camera& a, const scenes::Camera& b) {
 
 float AngleDegrees(const glm::vec3& a, const glm::vec3& b) {
   const float cosine = glm::dot(glm::normalize(a), glm::normalize(b));
-  return std::acos(std::min(1.0f, cosine)) * 180.0f / kPi;
+  return std::acos(std::min(1.0f, cosine)) * 180.0f / std::numbers::pi_v<float>;
 }
 
 scenes::CameraPath Path(scenes::CameraPathKind kind) {
@@ -37,7 +37,7 @@ scenes::CameraPath Path(scenes::CameraPathKind kind) {
 }
 
 TEST(CameraPath, FrameZeroIsTheStillCameraForEveryKind) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kMotionAspect);
   for (const std::string& name : scenes::CameraPathKindNames()) {
     const scenes::CameraPath path = Path(scenes::ParseCameraPathKind(name));
     EXPECT_TRUE(SameCamera(scenes::CameraAt(scene, path, 0), scene.camera)) << name;
@@ -47,7 +47,7 @@ TEST(CameraPath, FrameZeroIsTheStillCameraForEveryKind) {
 }
 
 TEST(CameraPath, OrbitKeepsDistanceAndTurnsByTheDocumentedAngle) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kMotionAspect);
   const scenes::CameraPath orbit = Path(scenes::CameraPathKind::Orbit);
   EXPECT_EQ(orbit.orbitDegreesPerFrame, 0.25f);  // docs/scenes.md
   const float distance = glm::distance(scene.camera.eye, scene.camera.target);
@@ -70,7 +70,7 @@ TEST(CameraPath, OrbitKeepsDistanceAndTurnsByTheDocumentedAngle) {
 }
 
 TEST(CameraPath, DollyChangesTheDistanceGeometricallyAndKeepsTheSceneBetweenThePlanes) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kMotionAspect);
   const scenes::CameraPath dolly = Path(scenes::CameraPathKind::Dolly);
   EXPECT_EQ(dolly.dollyFractionPerFrame, 0.005f);  // docs/scenes.md
   const float start = glm::distance(scene.camera.eye, scene.camera.target);
@@ -82,7 +82,7 @@ TEST(CameraPath, DollyChangesTheDistanceGeometricallyAndKeepsTheSceneBetweenTheP
                 0.0f, 1e-2f);
     for (const scenes::Mesh& mesh : scene.meshes) {
       for (const glm::vec3& p : mesh.positions) {
-        const glm::vec4 clip = camera.Projection(kAspect) * camera.View() * glm::vec4(p, 1.0f);
+        const glm::vec4 clip = camera.Projection(kMotionAspect) * camera.View() * glm::vec4(p, 1.0f);
         ASSERT_GE(clip.z, 0.0f) << frame;
         ASSERT_LE(clip.z, clip.w) << frame;
       }
@@ -92,11 +92,11 @@ TEST(CameraPath, DollyChangesTheDistanceGeometricallyAndKeepsTheSceneBetweenTheP
 }
 
 TEST(CameraPath, PanMovesTheImageByTheDocumentedPixelsPerFrame) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("default", kMotionAspect);
   const scenes::CameraPath pan = Path(scenes::CameraPathKind::Pan);
   EXPECT_EQ(pan.panPixelsPerFrame, 0.5f);  // docs/scenes.md
   const auto pixelOf = [&](const scenes::Camera& camera, const glm::vec3& p) {
-    const glm::vec4 clip = camera.Projection(kAspect) * camera.View() * glm::vec4(p, 1.0f);
+    const glm::vec4 clip = camera.Projection(kMotionAspect) * camera.View() * glm::vec4(p, 1.0f);
     return glm::vec2(clip.x / clip.w * 960.0f, -clip.y / clip.w * 540.0f);
   };
   for (int frame : {1, 8, -4}) {
@@ -121,7 +121,7 @@ TEST(CameraPath, NamesParseAndBadPathsAreSceneErrors) {
   } catch (const scenes::SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("still, orbit, pan, dolly"), std::string::npos);
   }
-  const scenes::Scene scene = scenes::MakeBuiltinScene("thin-fan", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("thin-fan", kMotionAspect);
   scenes::CameraPath dolly = Path(scenes::CameraPathKind::Dolly);
   dolly.dollyFractionPerFrame = 1.0f;
   EXPECT_THROW(scenes::CameraAt(scene, dolly, 1), scenes::SceneError);
@@ -134,7 +134,7 @@ TEST(CameraPath, NamesParseAndBadPathsAreSceneErrors) {
 // Mesh motion
 
 TEST(MeshMotion, WheelTurnsByAQuarterDegreePerFrame) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("wheel", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("wheel", kMotionAspect);
   std::size_t spokes = scene.meshes.size();
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     if (scene.meshes[m].name == "spokes") spokes = m;
@@ -148,7 +148,7 @@ TEST(MeshMotion, WheelTurnsByAQuarterDegreePerFrame) {
     EXPECT_NEAR(moved.z, tip.z, 1e-6f);
     // Counter-clockwise about +z (towards the camera) for positive frames.
     const float turned = std::atan2(moved.y, moved.x) - std::atan2(tip.y, tip.x);
-    EXPECT_NEAR(std::remainder(turned * 180.0f / kPi, 360.0f), 0.25f * static_cast<float>(frame),
+    EXPECT_NEAR(std::remainder(turned * 180.0f / std::numbers::pi_v<float>, 360.0f), 0.25f * static_cast<float>(frame),
                 1e-3f)
         << frame;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -160,7 +160,7 @@ TEST(MeshMotion, WheelTurnsByAQuarterDegreePerFrame) {
 }
 
 TEST(MeshMotion, VelocitiesAreTheDifferenceOfTwoFrames) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("wheel", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("wheel", kMotionAspect);
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const std::vector<glm::vec3> velocities = scenes::VertexVelocities(scene, m, 5);
     ASSERT_EQ(velocities.size(), scene.meshes[m].positions.size());
@@ -170,14 +170,14 @@ TEST(MeshMotion, VelocitiesAreTheDifferenceOfTwoFrames) {
       const float radius = glm::length(glm::vec2(p));
       const float expected = scene.meshes[m].motion.IsStatic()
                                  ? 0.0f
-                                 : 2.0f * radius * std::sin(0.125f * kPi / 180.0f);
+                                 : 2.0f * radius * std::sin(0.125f * std::numbers::pi_v<float> / 180.0f);
       ASSERT_NEAR(glm::length(velocities[v]), expected, 1e-5f) << scene.meshes[m].name;
     }
   }
 }
 
 TEST(MeshMotion, SceneAtMovesMeshesAndRebasesTheirMotion) {
-  scenes::Scene scene = scenes::MakeBuiltinScene("thin-fan", kAspect);
+  scenes::Scene scene = scenes::MakeBuiltinScene("thin-fan", kMotionAspect);
   scene.meshes[0].motion = {.pivot = {1, 0, 0},
                             .axis = {0, 1, 0},
                             .degreesPerFrame = 3.0f,

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
@@ -22,10 +23,9 @@
 
 namespace {
 
-constexpr float kWidth = 1920.0f;
-constexpr float kHeight = 1080.0f;
-constexpr float kAspect = kWidth / kHeight;
-constexpr float kPi = 3.14159265358979f;
+constexpr float kProceduralWidth = 1920.0f;
+constexpr float kProceduralHeight = 1080.0f;
+constexpr float kProceduralAspect = kProceduralWidth / kProceduralHeight;
 
 const std::vector<std::string> kStressScenes = {"spike-room",          "fence", "subpixel",
                                                 "pixel-crossing",      "wheel", "stair-steps",
@@ -33,8 +33,8 @@ const std::vector<std::string> kStressScenes = {"spike-room",          "fence", 
 
 // Pixel coordinates in the 1920x1080 image: origin top-left, y down.
 glm::vec2 ToPixel(const scenes::Camera& camera, const glm::vec3& p) {
-  const glm::vec4 clip = camera.Projection(kAspect) * camera.View() * glm::vec4(p, 1.0f);
-  return {(clip.x / clip.w * 0.5f + 0.5f) * kWidth, (0.5f - clip.y / clip.w * 0.5f) * kHeight};
+  const glm::vec4 clip = camera.Projection(kProceduralAspect) * camera.View() * glm::vec4(p, 1.0f);
+  return {(clip.x / clip.w * 0.5f + 0.5f) * kProceduralWidth, (0.5f - clip.y / clip.w * 0.5f) * kProceduralHeight};
 }
 
 struct ScreenTriangle {
@@ -107,7 +107,7 @@ bool IsFinite(const glm::vec3& v) {
 
 // Angle of a screen direction in degrees, folded to [0, 180).
 float DirectionDegrees(const glm::vec2& d) {
-  float degrees = std::atan2(d.y, d.x) * 180.0f / kPi;
+  float degrees = std::atan2(d.y, d.x) * 180.0f / std::numbers::pi_v<float>;
   if (degrees < 0.0f) degrees += 180.0f;
   return degrees >= 180.0f ? degrees - 180.0f : degrees;
 }
@@ -117,7 +117,7 @@ float DirectionDegrees(const glm::vec2& d) {
 
 TEST(ProceduralScenes, BuildFiniteConsistentData) {
   for (const std::string& name : kStressScenes) {
-    const scenes::Scene scene = scenes::LoadScene("builtin:" + name, kAspect);
+    const scenes::Scene scene = scenes::LoadScene("builtin:" + name, kProceduralAspect);
     EXPECT_EQ(scene.name, name);
     EXPECT_GT(scene.TriangleCount(), 0u) << name;
     for (const scenes::Mesh& mesh : scene.meshes) {
@@ -141,7 +141,7 @@ TEST(ProceduralScenes, BuildFiniteConsistentData) {
 // agree with its vertex normals.
 TEST(ProceduralScenes, EveryTriangleFacesTheCameraAndItsNormals) {
   for (const std::string& name : kStressScenes) {
-    const scenes::Scene scene = scenes::MakeBuiltinScene(name, kAspect);
+    const scenes::Scene scene = scenes::MakeBuiltinScene(name, kProceduralAspect);
     for (const scenes::Mesh& mesh : scene.meshes) {
       for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         const glm::vec3 a = mesh.positions[mesh.indices[t]];
@@ -162,7 +162,7 @@ TEST(ProceduralScenes, EveryTriangleFacesTheCameraAndItsNormals) {
 
 TEST(ProceduralScenes, PixelScenesPlaceTheirBackdropExactlyInPixels) {
   for (const char* name : {"fence", "subpixel", "pixel-crossing", "wheel", "stair-steps"}) {
-    const scenes::Scene scene = scenes::MakeBuiltinScene(name, kAspect);
+    const scenes::Scene scene = scenes::MakeBuiltinScene(name, kProceduralAspect);
     const scenes::Mesh& backdrop = MeshNamed(scene, "backdrop");
     glm::vec2 lo(1e9f);
     glm::vec2 hi(-1e9f);
@@ -191,7 +191,7 @@ TEST(ProceduralScenes, NarrowerImagesStillShowThePixelScenesWhole) {
 // What each name promises
 
 TEST(ProceduralScenes, SpikeRoomHasLongThinSpikesAtEverySlope) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("spike-room", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("spike-room", kProceduralAspect);
   std::set<int> tenDegreeBins;
   std::size_t spikes = 0;
   for (const char* name : {"spikes light", "spikes red"}) {
@@ -215,7 +215,7 @@ TEST(ProceduralScenes, SpikeRoomHasLongThinSpikesAtEverySlope) {
 }
 
 TEST(ProceduralScenes, FenceWiresAreOnePixelWideAndThinner) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("fence", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("fence", kProceduralAspect);
   const std::map<std::string, float> widths = {
       {"1px", 1.0f}, {"0.5px", 0.5f}, {"0.25px", 0.25f}, {"0.1px", 0.1f}};
   std::size_t wires = 0;
@@ -237,7 +237,7 @@ TEST(ProceduralScenes, FenceWiresAreOnePixelWideAndThinner) {
 }
 
 TEST(ProceduralScenes, SubpixelTrianglesAreSmallerThanAPixel) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("subpixel", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("subpixel", kProceduralAspect);
   const std::vector<ScreenTriangle> specks = ScreenTriangles(scene, MeshNamed(scene, "specks"));
   EXPECT_EQ(specks.size(), 112u * 60u);
   float smallest = 1.0f;
@@ -253,7 +253,7 @@ TEST(ProceduralScenes, SubpixelTrianglesAreSmallerThanAPixel) {
 
 // Counts, per pixel, the triangles that cover at least one of 16x16 points spread over it.
 TEST(ProceduralScenes, PixelCrossingHasManyPixelsCoveredByThreeOrMoreTriangles) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("pixel-crossing", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("pixel-crossing", kProceduralAspect);
   std::map<std::pair<int, int>, int> trianglesPerPixel;
   std::size_t triangles = 0;
   for (const scenes::Mesh& mesh : scene.meshes) {
@@ -324,7 +324,7 @@ bool MeshesIntersect(const scenes::Mesh& first, const scenes::Mesh& second) {
 }
 
 TEST(ProceduralScenes, IntersectingPlanesCrossEachOther) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("intersecting-planes", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("intersecting-planes", kProceduralAspect);
   ASSERT_EQ(scene.meshes.size(), 6u);
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     int crossings = 0;
@@ -337,11 +337,11 @@ TEST(ProceduralScenes, IntersectingPlanesCrossEachOther) {
   EXPECT_TRUE(MeshesIntersect(MeshNamed(scene, "grazing"), MeshNamed(scene, "ground")));
   const float shallow = std::acos(glm::dot(MeshNamed(scene, "shallow a").normals[0],
                                            MeshNamed(scene, "shallow b").normals[0]));
-  EXPECT_NEAR(shallow * 180.0f / kPi, 2.0f, 1e-2f);
+  EXPECT_NEAR(shallow * 180.0f / std::numbers::pi_v<float>, 2.0f, 1e-2f);
 }
 
 TEST(ProceduralScenes, WheelHasThinSpokesAndTurnsAsDocumented) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("wheel", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("wheel", kProceduralAspect);
   const std::vector<ScreenStrip> spokes = ScreenStrips(scene, MeshNamed(scene, "spokes"));
   EXPECT_EQ(spokes.size(), 48u);
   for (const ScreenStrip& spoke : spokes) {
@@ -357,7 +357,7 @@ TEST(ProceduralScenes, WheelHasThinSpokesAndTurnsAsDocumented) {
 }
 
 TEST(ProceduralScenes, StairStepsCoverNearHorizontalAndNearVerticalSlopes) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("stair-steps", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("stair-steps", kProceduralAspect);
   const std::vector<float> expected = {0.0f, 0.25f, 0.5f, 1.0f, 1.5f, 2.0f, 3.0f, 4.0f, 6.0f, 8.0f};
   for (const auto& [name, axisDegrees] :
        {std::pair{"near-horizontal bars", 0.0f}, std::pair{"near-vertical bars", 90.0f}}) {
@@ -377,7 +377,7 @@ TEST(ProceduralScenes, StairStepsCoverNearHorizontalAndNearVerticalSlopes) {
 }
 
 TEST(ProceduralScenes, TexturedPlaneHasTexcoordsAndDetailFinerThanAPixel) {
-  const scenes::Scene scene = scenes::MakeBuiltinScene("textured-plane", kAspect);
+  const scenes::Scene scene = scenes::MakeBuiltinScene("textured-plane", kProceduralAspect);
   ASSERT_EQ(scene.textures.size(), 2u);
   for (const scenes::Mesh& mesh : scene.meshes) {
     EXPECT_EQ(mesh.texcoords.size(), mesh.positions.size());

@@ -27,30 +27,19 @@
 #include "scenes/texture.h"
 #include "scenes_test_util.h"
 
-// Readable failure output for vectors compared with EXPECT_EQ (found by argument lookup).
-// Static: the suite is one binary and other test files may print glm types their own way.
-namespace glm {
-static void PrintTo(const vec3& v, std::ostream* out) {
-  *out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-}
-}  // namespace glm
-
-#ifndef AASIM_TESTMODELS_DIR
-#define AASIM_TESTMODELS_DIR "/usr/share/assimp/models"
-#endif
-
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr float kAspect = 16.0f / 9.0f;
 constexpr int kUnsignedByte = 5121;
 constexpr int kUnsignedShort = 5123;
 constexpr int kUnsignedInt = 5125;
 constexpr int kFloat = 5126;
-const fs::path kGltf2Models = fs::path(AASIM_TESTMODELS_DIR) / "glTF2";
 
 using scenes_test::Base64;
+using scenes_test::kAspect;
+using scenes_test::TestDir;
+using scenes_test::WriteText;
 
 // Built with append: GCC 12 warns falsely (-Wrestrict) on "literal" + temporary string.
 std::string JoinJson(const std::vector<std::string>& items) {
@@ -142,26 +131,26 @@ class GltfWriter {
   std::string Json() const {
     std::vector<std::string> roots;
     for (int node : sceneNodes) roots.push_back(std::to_string(node));
-    std::string json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":)";
-    json.append(JoinJson(roots)).append(R"(}],"nodes":)").append(JoinJson(nodes));
-    json.append(R"(,"meshes":)").append(JoinJson(meshes));
-    json.append(R"(,"accessors":)").append(JoinJson(accessors));
-    json.append(R"(,"bufferViews":)").append(JoinJson(bufferViews));
+    std::string document = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":)";
+    document.append(JoinJson(roots)).append(R"(}],"nodes":)").append(JoinJson(nodes));
+    document.append(R"(,"meshes":)").append(JoinJson(meshes));
+    document.append(R"(,"accessors":)").append(JoinJson(accessors));
+    document.append(R"(,"bufferViews":)").append(JoinJson(bufferViews));
     // glTF forbids empty arrays, so optional ones appear only when used.
     const std::pair<const char*, const std::vector<std::string>*> optional[] = {
         {"materials", &materials}, {"textures", &textures}, {"images", &images},
         {"samplers", &samplers},   {"cameras", &cameras},   {"extensionsUsed", &extensionsUsed}};
     for (const auto& [key, items] : optional) {
-      if (!items->empty()) json.append(",\"").append(key).append("\":").append(JoinJson(*items));
+      if (!items->empty()) document.append(",\"").append(key).append("\":").append(JoinJson(*items));
     }
-    json.append(R"(,"buffers":[{"byteLength":)").append(std::to_string(buffer_.size()));
-    json.append(R"(,"uri":")");
+    document.append(R"(,"buffers":[{"byteLength":)").append(std::to_string(buffer_.size()));
+    document.append(R"(,"uri":")");
     if (bufferUri.empty()) {
-      json.append("data:application/octet-stream;base64,").append(Base64(buffer_));
+      document.append("data:application/octet-stream;base64,").append(Base64(buffer_));
     } else {
-      json.append(bufferUri);
+      document.append(bufferUri);
     }
-    return json.append(R"("}]})");
+    return document.append(R"("}]})");
   }
 
  private:
@@ -195,21 +184,6 @@ class GltfWriter {
 
   std::vector<unsigned char> buffer_;
 };
-
-// A fresh directory per test, so tests can run in parallel processes.
-fs::path TestDir() {
-  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "aasim_scenes_test" /
-                       (std::string(info->test_suite_name()) + "." + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-fs::path WriteText(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
 
 fs::path WriteGltf(const GltfWriter& writer, const std::string& name) {
   return WriteText(TestDir() / name, writer.Json());
@@ -389,7 +363,7 @@ TEST(SceneGltf, ReadsEveryIndexComponentType) {
   const int position = writer.AddVec3(kSquare);
   for (int type : {kUnsignedByte, kUnsignedShort, kUnsignedInt}) {
     const int indices = writer.AddIndices(kSquareIndices, type);
-    writer.AddMesh("[" + Primitive(position, indices) + "]");
+    writer.AddMesh(JoinJson({Primitive(position, indices)}));
   }
   writer.nodes = {R"({"children":[1,2,3]})", R"({"mesh":0})", R"({"mesh":1})", R"({"mesh":2})"};
   const scenes::Scene scene = scenes::LoadGltf(WriteGltf(writer, "indices.gltf"), kAspect);
@@ -813,7 +787,7 @@ TEST(SceneGltfErrors, IndexOutOfRange) {
   GltfWriter writer;
   const int position = writer.AddVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   const int indices = writer.AddIndices({0, 1, 2, 0, 7, 1}, kUnsignedInt);
-  writer.AddMesh("[" + Primitive(position, indices) + "]");
+  writer.AddMesh(JoinJson({Primitive(position, indices)}));
   writer.nodes = {R"({"mesh":0})"};
   const std::string message = LoadError(WriteGltf(writer, "range.gltf"));
   EXPECT_NE(message.find("range.gltf: mesh 0 primitive 0: index 7 at position 4 is out of range "
@@ -940,7 +914,7 @@ TEST(SceneGltfErrors, AssimpModelsWithKnownDefects) {
       {"draco/2CylinderEngine.gltf", "Draco-compressed meshes"},
       {"IncorrectVertexArrays/Cube.gltf", "/bufferViews/2: bytes 504 to 936 run past the end"}};
   for (const auto& [file, problem] : cases) {
-    const fs::path path = kGltf2Models / file;
+    const fs::path path = scenes_test::Gltf2Models() / file;
     const std::string message = LoadError(path);
     EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
     EXPECT_NE(message.find(problem), std::string::npos) << message;
@@ -954,7 +928,7 @@ TEST(SceneGltfErrors, AssimpModelsWithKnownDefects) {
 TEST(SceneGltfAssets, TwoCylinderEngineLoads) {
   ::testing::internal::CaptureStderr();
   const scenes::Scene scene = scenes::LoadScene(
-      (kGltf2Models / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb").string(), kAspect);
+      (scenes_test::Gltf2Models() / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb").string(), kAspect);
   ::testing::internal::GetCapturedStderr();
   // The file's own camera (yfov 0.3143), its planes 0.05..10^6 pulled in around the engine.
   EXPECT_NEAR(scene.camera.verticalFovRadians, 0.3143f, 1e-4f);
@@ -1007,7 +981,7 @@ TEST(SceneGltfAssets, EveryAssimpGltf2FileLoadsOrThrowsSceneError) {
   std::size_t loaded = 0;
   std::size_t textured = 0;
   ::testing::internal::CaptureStderr();
-  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(kGltf2Models)) {
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(scenes_test::Gltf2Models())) {
     const std::string extension = entry.path().extension().string();
     if (extension != ".gltf" && extension != ".glb") continue;
     ++files;
@@ -1035,7 +1009,7 @@ TEST(SceneGltfAssets, BoxTexturedInEveryContainerCarriesItsTexture) {
        {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb",
         "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
     ::testing::internal::CaptureStderr();
-    const scenes::Scene scene = scenes::LoadGltf(kGltf2Models / file, kAspect);
+    const scenes::Scene scene = scenes::LoadGltf(scenes_test::Gltf2Models() / file, kAspect);
     ::testing::internal::GetCapturedStderr();
     ASSERT_EQ(scene.meshes.size(), 1u) << file;
     const scenes::Mesh& mesh = scene.meshes[0];
@@ -1056,7 +1030,7 @@ TEST(SceneGltfAssets, BoxTexturedInEveryContainerCarriesItsTexture) {
 TEST(SceneGltfAssets, TextureTransformTestDecodesAllFiveImages) {
   ::testing::internal::CaptureStderr();
   const scenes::Scene scene =
-      scenes::LoadGltf(kGltf2Models / "textureTransform/TextureTransformTest.gltf", kAspect);
+      scenes::LoadGltf(scenes_test::Gltf2Models() / "textureTransform/TextureTransformTest.gltf", kAspect);
   const std::string warnings = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(scene.textures.size(), 5u);
   EXPECT_EQ(scene.materials.size(), 9u);
@@ -1066,7 +1040,7 @@ TEST(SceneGltfAssets, TextureTransformTestDecodesAllFiveImages) {
 
 TEST(SceneGltfAssets, CamerasGltfUsesItsPerspectiveCamera) {
   ::testing::internal::CaptureStderr();
-  const scenes::Scene scene = scenes::LoadGltf(kGltf2Models / "cameras/Cameras.gltf", kAspect);
+  const scenes::Scene scene = scenes::LoadGltf(scenes_test::Gltf2Models() / "cameras/Cameras.gltf", kAspect);
   const std::string warnings = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(scene.camera.eye, glm::vec3(0.5f, 0.5f, 3.0f));
   EXPECT_NEAR(glm::distance(glm::normalize(scene.camera.target - scene.camera.eye),

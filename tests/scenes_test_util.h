@@ -1,16 +1,53 @@
 #pragma once
-// Helpers the glTF tests share for writing documents in code.
+// Helpers the scene tests share: writing glTF documents in code, a scratch directory per test,
+// the test models, and readable glm vectors in failure output.
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+// Readable failure output for vectors compared with EXPECT_EQ (found by argument lookup).
+namespace glm {
+inline void PrintTo(const vec3& v, std::ostream* out) { *out << '(' << v.x << ", " << v.y << ", " << v.z << ')'; }
+}  // namespace glm
+
+#ifndef AASIM_TESTMODELS_DIR
+#define AASIM_TESTMODELS_DIR "/usr/share/assimp/models"
+#endif
+
 namespace scenes_test {
+
+inline constexpr float kAspect = 16.0f / 9.0f;
+
+inline const std::filesystem::path& Gltf2Models() {
+  static const std::filesystem::path models = std::filesystem::path(AASIM_TESTMODELS_DIR) / "glTF2";
+  return models;
+}
+
+// A fresh directory per test, so tests can run in parallel processes.
+inline std::filesystem::path TestDir() {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "aasim_scenes_test" /
+                                    (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline std::filesystem::path WriteText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
 
 // RFC 4648 base64 with padding, for data: URIs.
 inline std::string Base64(const std::vector<std::uint8_t>& bytes) {

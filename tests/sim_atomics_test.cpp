@@ -20,9 +20,9 @@
 namespace sim {
 namespace {
 
-Machine TestMachine() { return Machine(GpuConfigByName("ps4-class")); }
+using sim::testing::TestMachine;
 
-KernelInfo SmallKernel() { return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10}; }
+using sim::testing::SmallKernel;
 
 constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
 

@@ -21,9 +21,9 @@ namespace {
 
 using raster::testing::ScreenToClip;
 
-Machine TestMachine() { return Machine(GpuConfigByName("ps4-class")); }
+using sim::testing::TestMachine;
 
-KernelInfo SmallKernel() { return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10}; }
+using sim::testing::SmallKernel;
 
 std::uint64_t Ceil64(std::uint64_t n) { return (n + 63) / 64; }
 

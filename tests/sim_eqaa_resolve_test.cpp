@@ -13,7 +13,7 @@
 namespace sim {
 namespace {
 
-constexpr fmask::EqaaConfig kModes[] = {{1, 1, 1}, {2, 2, 1}, {4, 4, 2}, {8, 8, 1}, {8, 4, 2}, {8, 8, 8}, {16, 8, 4}};
+constexpr fmask::EqaaConfig kResolveModes[] = {{1, 1, 1}, {2, 2, 1}, {4, 4, 2}, {8, 8, 1}, {8, 4, 2}, {8, 8, 8}, {16, 8, 4}};
 
 glm::vec4 HostBox(const fmask::EqaaSurface& surface, int x, int y) { return ToVec4(surface.BoxResolve(x, y)); }
 
@@ -32,7 +32,7 @@ const ResourceTraffic& TrafficOf(const DispatchReport& report, const std::string
 }
 
 TEST(EqaaResolveKernel, BoxAndFetchEqualTheHostDefinitionsBitForBit) {
-  for (const fmask::EqaaConfig& mode : kModes) {
+  for (const fmask::EqaaConfig& mode : kResolveModes) {
     const auto frame = testing_eqaa::RenderBuiltin("pixel-crossing", 96, 64, mode);
     const fmask::EqaaSurface& surface = frame->pipeline->Eqaa();
     Texture2D<glm::vec4> box("box", 96, 64, 4), fetch("fetch", 96, 64, 4);

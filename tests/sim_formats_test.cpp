@@ -18,6 +18,7 @@
 
 #include "sim/dispatch.h"
 #include "sim/formats.h"
+#include "sim_test_util.h"
 
 namespace sim {
 namespace {
@@ -268,7 +269,7 @@ TEST(SimFormats, MissingChannelsReadAsDefaults) {
   EXPECT_EQ(Quantize(Format::R32Uint, 0xdeadbeefu), 0xdeadbeefu);
 }
 
-KernelInfo SmallKernel() { return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10}; }
+using sim::testing::SmallKernel;
 
 // Stores through views quantise in the view's format; a texture without a format keeps the float
 // unchanged, as before formats existed.

@@ -47,7 +47,7 @@ struct Rendered {
   std::size_t beforeDraw = 0;
 };
 
-Rendered Render(const std::string& scene, int w, int h, const FrameSetup& setup) {
+Rendered RenderWithSetup(const std::string& scene, int w, int h, const FrameSetup& setup) {
   const float aspect = static_cast<float>(w) / static_cast<float>(h);
   const study::FrameScene frameScene = study::ToFrameScene(scenes::LoadScene(scene, aspect), aspect);
   Machine machine(GpuConfigByName("ps4-class"));
@@ -85,7 +85,7 @@ Rendered Render(const std::string& scene, int w, int h, const FrameSetup& setup)
   return out;
 }
 
-const DispatchReport& Draw(const Rendered& r) { return r.reports.at(r.beforeDraw); }
+const DispatchReport& DrawReport(const Rendered& r) { return r.reports.at(r.beforeDraw); }
 
 // ---- The sort ----
 
@@ -123,20 +123,20 @@ TEST(SimFrameSetup, DrawOrdersSortByNearestDepthAndKeepSubmissionOrderOnTies) {
 }
 
 TEST(SimFrameSetup, TheDrawnOrderRenamesPrimitivesButDrawsTheSameTriangles) {
-  const Rendered submission = Render("builtin:default", 96, 64, {.eqaa = {8, 8, 8}});
-  const Rendered sorted = Render("builtin:default", 96, 64, {.eqaa = {8, 8, 8}, .order = DrawOrder::FrontToBack});
+  const Rendered submission = RenderWithSetup("builtin:default", 96, 64, {.eqaa = {8, 8, 8}});
+  const Rendered sorted = RenderWithSetup("builtin:default", 96, 64, {.eqaa = {8, 8, 8}, .order = DrawOrder::FrontToBack});
   // Every sample exact and no eviction (F = S): the final image does not depend on the order,
   // but the primitives are renamed.
   EXPECT_EQ(submission.colour, sorted.colour);
   EXPECT_NE(submission.samplePrimitive, sorted.samplePrimitive);
-  EXPECT_EQ(Draw(submission).raster->trianglesIn, Draw(sorted).raster->trianglesIn);
+  EXPECT_EQ(DrawReport(submission).raster->trianglesIn, DrawReport(sorted).raster->trianglesIn);
 }
 
 // ---- The pre-pass dispatch ----
 
 TEST(SimFrameSetup, ThePrepassIsADepthOnlyDispatchBeforeTheMaterialDraw) {
-  const Rendered plain = Render("builtin:pixel-crossing", 128, 72, {});
-  const Rendered prepass = Render("builtin:pixel-crossing", 128, 72, {.prepass = true});
+  const Rendered plain = RenderWithSetup("builtin:pixel-crossing", 128, 72, {});
+  const Rendered prepass = RenderWithSetup("builtin:pixel-crossing", 128, 72, {.prepass = true});
   ASSERT_EQ(plain.reports.size(), 2u);  // the material draw and the box resolve
   ASSERT_EQ(prepass.reports.size(), 3u);
   ASSERT_EQ(prepass.beforeDraw, 1u);
@@ -149,13 +149,13 @@ TEST(SimFrameSetup, ThePrepassIsADepthOnlyDispatchBeforeTheMaterialDraw) {
   EXPECT_TRUE(depthOnly.heat.Empty());
   EXPECT_GT(depthOnly.time.rasterMicroseconds, 0.0);
   // The pre-pass is the plain frame's rasterization: same triangles, same test, same writes.
-  ASSERT_TRUE(depthOnly.raster && Draw(plain).raster);
-  EXPECT_EQ(*depthOnly.raster, *Draw(plain).raster);
+  ASSERT_TRUE(depthOnly.raster && DrawReport(plain).raster);
+  EXPECT_EQ(*depthOnly.raster, *DrawReport(plain).raster);
   // The material draw then shades only what is visible: fewer passing samples and lanes.
-  EXPECT_EQ(Draw(prepass).name, "frame/material");
-  EXPECT_LT(Draw(prepass).raster->samplesDepthPassed, Draw(plain).raster->samplesDepthPassed);
-  EXPECT_LT(Draw(prepass).lanes.lanesActive, Draw(plain).lanes.lanesActive);
-  EXPECT_EQ(Draw(prepass).raster->zPlaneDecompressions, 0u) << "the EQUAL draw writes no depth";
+  EXPECT_EQ(DrawReport(prepass).name, "frame/material");
+  EXPECT_LT(DrawReport(prepass).raster->samplesDepthPassed, DrawReport(plain).raster->samplesDepthPassed);
+  EXPECT_LT(DrawReport(prepass).lanes.lanesActive, DrawReport(plain).lanes.lanesActive);
+  EXPECT_EQ(DrawReport(prepass).raster->zPlaneDecompressions, 0u) << "the EQUAL draw writes no depth";
 }
 
 // ---- What the pre-pass + EQUAL does to the EQAA surface ----
@@ -191,9 +191,9 @@ Classified Classify(const Rendered& frame, const Rendered& reference, int sample
 TEST(SimFrameSetup, PrepassAndEqualOnExactDepthLeaveEachSampleVisibleOrUnknownWhereAnotherFragmentIs) {
   const int w = 160, h = 90;
   for (const DrawOrder order : {DrawOrder::Submission, DrawOrder::FrontToBack}) {
-    const Rendered reference = Render("builtin:pixel-crossing", w, h, {.eqaa = {8, 8, 8}, .order = order});
+    const Rendered reference = RenderWithSetup("builtin:pixel-crossing", w, h, {.eqaa = {8, 8, 8}, .order = order});
     for (const fmask::EqaaConfig eqaa : {fmask::EqaaConfig{8, 8, 1}, fmask::EqaaConfig{8, 4, 1}}) {
-      const Rendered frame = Render("builtin:pixel-crossing", w, h, {.eqaa = eqaa, .order = order, .prepass = true});
+      const Rendered frame = RenderWithSetup("builtin:pixel-crossing", w, h, {.eqaa = eqaa, .order = order, .prepass = true});
       const Classified c = Classify(frame, reference, 8, /*exactTilesOnly=*/true);
       const std::string label = fmask::EqaaName(eqaa) + " " + std::string(DrawOrderName(order));
       EXPECT_GT(c.knownVisible, 0u) << label;
@@ -208,12 +208,12 @@ TEST(SimFrameSetup, WithEveryDepthExactThePrepassChangesTheCostNotTheSurface) {
   // 8Z: every sample is anchored, so the last accepted fragment of a pixel is its last drawn
   // visible one with or without the pre-pass (docs/eqaa.md "CRAA setup"); only hidden
   // fragments stop reaching the pixel shader and the colour block.
-  const Rendered plain = Render("builtin:default", 128, 72, {.eqaa = {8, 8, 1}});
-  const Rendered prepass = Render("builtin:default", 128, 72, {.eqaa = {8, 8, 1}, .prepass = true});
+  const Rendered plain = RenderWithSetup("builtin:default", 128, 72, {.eqaa = {8, 8, 1}});
+  const Rendered prepass = RenderWithSetup("builtin:default", 128, 72, {.eqaa = {8, 8, 1}, .prepass = true});
   EXPECT_EQ(plain.samplePrimitive, prepass.samplePrimitive);
   EXPECT_EQ(plain.colour, prepass.colour);
   EXPECT_LT(prepass.fragments.fragmentsAdded, plain.fragments.fragmentsAdded);
-  EXPECT_LT(Draw(prepass).lanes.lanesActive, Draw(plain).lanes.lanesActive);
+  EXPECT_LT(DrawReport(prepass).lanes.lanesActive, DrawReport(plain).lanes.lanesActive);
 }
 
 TEST(SimFrameSetup, WithoutCompressedDepthTheEqualDrawLosesUnanchoredSamples) {
@@ -222,10 +222,10 @@ TEST(SimFrameSetup, WithoutCompressedDepthTheEqualDrawLosesUnanchoredSamples) {
   // on tilted planes EQUAL fails there and the sample goes UNKNOWN although the stored fragment
   // is the visible one (docs/eqaa.md "CRAA setup").
   const int w = 160, h = 90;
-  const Rendered reference = Render("builtin:intersecting-planes", w, h, {.eqaa = {8, 8, 8}});
+  const Rendered reference = RenderWithSetup("builtin:intersecting-planes", w, h, {.eqaa = {8, 8, 8}});
   const Rendered compressed =
-      Render("builtin:intersecting-planes", w, h, {.eqaa = {8, 4, 1}, .prepass = true, .maxZPlanes = 16});
-  const Rendered flat = Render("builtin:intersecting-planes", w, h, {.eqaa = {8, 4, 1}, .prepass = true, .maxZPlanes = 0});
+      RenderWithSetup("builtin:intersecting-planes", w, h, {.eqaa = {8, 4, 1}, .prepass = true, .maxZPlanes = 16});
+  const Rendered flat = RenderWithSetup("builtin:intersecting-planes", w, h, {.eqaa = {8, 4, 1}, .prepass = true, .maxZPlanes = 0});
   ASSERT_EQ(compressed.reports[0].raster->zTilesDecompressedAtEnd, 0u);
   ASSERT_GT(flat.reports[0].raster->zTilesDecompressedAtEnd, 0u);
   const Classified withPlanes = Classify(compressed, reference, 8, /*exactTilesOnly=*/false);
@@ -236,14 +236,14 @@ TEST(SimFrameSetup, WithoutCompressedDepthTheEqualDrawLosesUnanchoredSamples) {
   EXPECT_EQ(flat.fragments.zPlaneRescues, 0u);
 }
 
-// ---- Draw order ----
+// ---- DrawReport order ----
 
 TEST(SimFrameSetup, FrontToBackDrawsLessOverdrawThanSubmissionOrder) {
-  const Rendered submission = Render("builtin:default", 160, 90, {.eqaa = {8, 4, 2}});
-  const Rendered triangles = Render("builtin:default", 160, 90, {.eqaa = {8, 4, 2}, .order = DrawOrder::FrontToBack});
-  const Rendered objects = Render("builtin:default", 160, 90, {.eqaa = {8, 4, 2}, .order = DrawOrder::ObjectsFrontToBack});
-  EXPECT_LT(Draw(triangles).lanes.lanesActive, Draw(submission).lanes.lanesActive);
-  EXPECT_LT(Draw(objects).lanes.lanesActive, Draw(submission).lanes.lanesActive);
+  const Rendered submission = RenderWithSetup("builtin:default", 160, 90, {.eqaa = {8, 4, 2}});
+  const Rendered triangles = RenderWithSetup("builtin:default", 160, 90, {.eqaa = {8, 4, 2}, .order = DrawOrder::FrontToBack});
+  const Rendered objects = RenderWithSetup("builtin:default", 160, 90, {.eqaa = {8, 4, 2}, .order = DrawOrder::ObjectsFrontToBack});
+  EXPECT_LT(DrawReport(triangles).lanes.lanesActive, DrawReport(submission).lanes.lanesActive);
+  EXPECT_LT(DrawReport(objects).lanes.lanesActive, DrawReport(submission).lanes.lanesActive);
   EXPECT_LT(triangles.fragments.fragmentsAdded, submission.fragments.fragmentsAdded);
   EXPECT_LT(objects.fragments.fragmentsAdded, submission.fragments.fragmentsAdded);
 }
@@ -254,7 +254,7 @@ TEST(SimFrameSetup, SortedPrepassFramesDoNotDependOnTheThreadCount) {
   const FrameSetup setup{.eqaa = {8, 4, 1}, .order = DrawOrder::FrontToBack, .prepass = true, .maxZPlanes = 2};
   const auto run = [&](int threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-    return Render("builtin:pixel-crossing", 200, 120, setup);
+    return RenderWithSetup("builtin:pixel-crossing", 200, 120, setup);
   };
   const Rendered one = run(1);
   const Rendered two = run(2);
@@ -273,7 +273,7 @@ TEST(SimFrameSetup, SortedPrepassFramesDoNotDependOnTheThreadCount) {
 
 void PrintMeasurement(const std::string& scene, const FrameSetup& setup, const Rendered& reference) {
   const fmask::EqaaConfig& eqaa = setup.eqaa;
-  const Rendered r = Render(scene, 640, 360, setup);
+  const Rendered r = RenderWithSetup(scene, 640, 360, setup);
   const Classified c = Classify(r, reference, eqaa.coverageSamples, /*exactTilesOnly=*/false);
   double microseconds = 0.0;
   for (const DispatchReport& report : r.reports) microseconds += report.time.totalMicroseconds;
@@ -288,7 +288,7 @@ void PrintMeasurement(const std::string& scene, const FrameSetup& setup, const R
               static_cast<unsigned long long>(c.knownHidden), static_cast<unsigned long long>(c.unknownWhereStoredVisible),
               static_cast<unsigned long long>(r.fragments.fragmentsRejected),
               static_cast<unsigned long long>(r.fragments.evictions),
-              static_cast<unsigned long long>(Draw(r).lanes.lanesActive), microseconds);
+              static_cast<unsigned long long>(DrawReport(r).lanes.lanesActive), microseconds);
 }
 
 TEST(SimFrameSetup, DISABLED_MeasureCraaSetup) {
@@ -299,7 +299,7 @@ TEST(SimFrameSetup, DISABLED_MeasureCraaSetup) {
               "UNKNOWN, stored visible | rejected | evictions | PS lanes | est. µs |\n");
   for (const std::string& scene : scenes) {
     for (const DrawOrder order : {DrawOrder::Submission, DrawOrder::FrontToBack}) {
-      const Rendered reference = Render(scene, 640, 360, {.eqaa = {8, 8, 8}, .order = order});
+      const Rendered reference = RenderWithSetup(scene, 640, 360, {.eqaa = {8, 8, 8}, .order = order});
       for (const fmask::EqaaConfig eqaa : {fmask::EqaaConfig{8, 8, 1}, fmask::EqaaConfig{8, 4, 1}}) {
         for (const bool prepass : {false, true}) {
           // With Z = S every sample is anchored and exact whatever the tiles hold.

@@ -165,7 +165,7 @@ TEST(SimFrame, RefusesInconsistentGeometry) {
 
 // The bytes of an image, for bit-for-bit comparison (-0.0 vs 0.0 and NaN payloads count).
 template <typename T>
-std::vector<std::byte> Bytes(const Texture2D<T>& texture) {
+std::vector<std::byte> TexelBytes(const Texture2D<T>& texture) {
   static_assert(std::is_trivially_copyable_v<T>);
   const std::span<const T> texels = texture.Texels();
   std::vector<std::byte> bytes(texels.size_bytes());
@@ -246,15 +246,15 @@ FrameRun RunFrame(int threads) {
                {frame.Colour().Texels().begin(), frame.Colour().Texels().end()},
                {stencil.colour.Texels().begin(), stencil.colour.Texels().end()},
                {queue.colour.Texels().begin(), queue.colour.Texels().end()},
-               {{"colour", Bytes(frame.Colour())},
-                {"depth", Bytes(frame.Depth())},
-                {"normal", Bytes(frame.Normal())},
-                {"object id", Bytes(frame.ObjectId())},
-                {"velocity", Bytes(frame.Velocity())},
+               {{"colour", TexelBytes(frame.Colour())},
+                {"depth", TexelBytes(frame.Depth())},
+                {"normal", TexelBytes(frame.Normal())},
+                {"object id", TexelBytes(frame.ObjectId())},
+                {"velocity", TexelBytes(frame.Velocity())},
                 {"eqaa surface", EqaaBytes(frame.Eqaa())},
-                {"stencil output", Bytes(stencil.colour)},
+                {"stencil output", TexelBytes(stencil.colour)},
                 {"stencil edges", layerBytes(stencil)},
-                {"queue output", Bytes(queue.colour)},
+                {"queue output", TexelBytes(queue.colour)},
                 {"queue edges", layerBytes(queue)}},
                0,
                stencil.workItems};
@@ -330,8 +330,8 @@ TEST(SimFrame, APerFramePatternReusesTheSurfacesAndMatchesAFreshPipeline) {
   EXPECT_EQ(&sequence.Eqaa(), surfaceBefore);
   EXPECT_EQ(sequence.FrameIndex(), 1);
   EXPECT_EQ(sequence.DepthSurface().Pattern().Name(), rotated.Name());
-  EXPECT_EQ(Bytes(sequence.Colour()), Bytes(single.Colour()));
-  EXPECT_EQ(Bytes(sequence.Depth()), Bytes(single.Depth()));
+  EXPECT_EQ(TexelBytes(sequence.Colour()), TexelBytes(single.Colour()));
+  EXPECT_EQ(TexelBytes(sequence.Depth()), TexelBytes(single.Depth()));
   EXPECT_EQ(EqaaBytes(sequence.Eqaa()), EqaaBytes(single.Eqaa()));
   testing::ExpectSameReports(reused.Reports(), fresh.Reports());
   // The standard and rotated-grid patterns differ, so the frames must too (or the test shows nothing).

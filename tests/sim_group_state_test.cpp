@@ -18,7 +18,7 @@
 namespace sim {
 namespace {
 
-Machine TestMachine() { return Machine(GpuConfigByName("ps4-class")); }
+using sim::testing::TestMachine;
 
 constexpr int kGroupThreads = 100;  // two waves, the second partial
 constexpr int kGroups = 40;         // three chunks of up to 16 groups

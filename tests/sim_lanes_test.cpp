@@ -27,9 +27,9 @@ namespace {
 
 using raster::testing::ScreenToClip;
 
-Machine TestMachine() { return Machine(GpuConfigByName("ps4-class")); }
+using sim::testing::TestMachine;
 
-KernelInfo SmallKernel() { return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10}; }
+using sim::testing::SmallKernel;
 
 constexpr std::uint64_t kAllLanes = ~std::uint64_t{0};
 

@@ -24,7 +24,7 @@
 namespace sim {
 namespace {
 
-KernelInfo SmallKernel() { return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10}; }
+using sim::testing::SmallKernel;
 
 // Runs `body` once on one compute lane with `texture` bound for reading; returns its traffic.
 template <typename T>
@@ -44,7 +44,7 @@ struct ReferenceCoord {
   long texel;
   int weight;
 };
-ReferenceCoord Reference(float u, int size) {
+ReferenceCoord ReferenceCoordOf(float u, int size) {
   // The double product is exact (24 x 22 bits); rounding it to float is the float32 multiply.
   const auto product = static_cast<double>(static_cast<float>(static_cast<double>(u) * (256.0 * size)));
   long s = static_cast<long>(std::floor(product));
@@ -65,7 +65,7 @@ int Wrap(long i, int size, AddressMode mode) {
 // codes[c][y * w + x]: the 8-bit code of channel c.
 using Codes = std::vector<std::vector<int>>;
 int ReferenceBilinear(const Codes& codes, int c, int w, int h, glm::vec2 uv, glm::ivec2 offset, AddressMode mode) {
-  const ReferenceCoord rx = Reference(uv.x, w), ry = Reference(uv.y, h);
+  const ReferenceCoord rx = ReferenceCoordOf(uv.x, w), ry = ReferenceCoordOf(uv.y, h);
   const int x0 = Wrap(rx.texel + offset.x, w, mode), x1 = Wrap(rx.texel + offset.x + 1, w, mode);
   const int y0 = Wrap(ry.texel + offset.y, h, mode), y1 = Wrap(ry.texel + offset.y + 1, h, mode);
   const auto at = [&](int x, int y) { return codes[static_cast<std::size_t>(c)][static_cast<std::size_t>(y * w + x)]; };

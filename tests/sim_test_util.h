@@ -1,5 +1,6 @@
 #pragma once
-// Shared helpers for the machine tests: report comparison for determinism checks, draw targets.
+// Shared helpers for the machine tests: the PS4-class machine, a light kernel, report comparison
+// for determinism checks, draw targets.
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,13 @@
 #include "sim/dispatch.h"
 
 namespace sim::testing {
+
+inline Machine TestMachine() { return Machine(GpuConfigByName("ps4-class")); }
+
+// A kernel light enough that occupancy never limits the tests' waves.
+inline KernelInfo SmallKernel() {
+  return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10};
+}
 
 // The single-triangle draws' target: w x h, 4 samples all anchored, the standard pattern.
 inline raster::DepthStencilSurface FourSampleDepth(int w, int h) {

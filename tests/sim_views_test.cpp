@@ -10,20 +10,21 @@
 #include <glm/vec2.hpp>
 
 #include "sim/dispatch.h"
+#include "sim_test_util.h"
 
 namespace sim {
 namespace {
 
-KernelInfo SmallKernel() { return {.vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 10}; }
+using sim::testing::SmallKernel;
 
 // 4x8 (not square, so a swapped axis shows) with texel (x, y) = x + 10 y. Power-of-two sizes
 // keep every uv below exact in binary.
-constexpr int kW = 4, kH = 8;
+constexpr int kViewW = 4, kViewH = 8;
 
-Texture2D<float> Ramp() {
-  Texture2D<float> texture("ramp", kW, kH, 2);  // a 16-bit format in the model
-  for (int y = 0; y < kH; ++y) {
-    for (int x = 0; x < kW; ++x) texture.At(x, y) = static_cast<float>(x + 10 * y);
+Texture2D<float> ViewRamp() {
+  Texture2D<float> texture("ramp", kViewW, kViewH, 2);  // a 16-bit format in the model
+  for (int y = 0; y < kViewH; ++y) {
+    for (int x = 0; x < kViewW; ++x) texture.At(x, y) = static_cast<float>(x + 10 * y);
   }
   return texture;
 }
@@ -41,31 +42,31 @@ ResourceTraffic Sample(const Texture2D<float>& texture,
   return r.resources.at(0);
 }
 
-glm::vec2 Uv(double x, double y) { return {static_cast<float>(x / kW), static_cast<float>(y / kH)}; }
+glm::vec2 ViewUv(double x, double y) { return {static_cast<float>(x / kViewW), static_cast<float>(y / kViewH)}; }
 
 TEST(SimViews, PointSamplingPicksTheTexelContainingTheCoordinate) {
-  const Texture2D<float> texture = Ramp();
+  const Texture2D<float> texture = ViewRamp();
   int calls = 0;
   const ResourceTraffic traffic = Sample(texture, [&](const TextureView<float>& view, const ComputeLane& lane) {
-    for (int y = 0; y < kH; ++y) {
-      for (int x = 0; x < kW; ++x) {
+    for (int y = 0; y < kViewH; ++y) {
+      for (int x = 0; x < kViewW; ++x) {
         // uv spans [0, 1] over the texture: texel (x, y) covers [x, x+1) / size, lower edge inclusive.
         for (const double offset : {0.0, 0.25, 0.5, 0.96875}) {
           for (const AddressMode mode : {AddressMode::Clamp, AddressMode::Repeat}) {
-            EXPECT_EQ(view.SamplePoint(lane, Uv(x + offset, y + offset), mode), T(x, y)) << x << "," << y << "+" << offset;
+            EXPECT_EQ(view.SamplePoint(lane, ViewUv(x + offset, y + offset), mode), T(x, y)) << x << "," << y << "+" << offset;
             ++calls;
           }
         }
       }
     }
     // Clamp pins the coordinate to the edge texels; uv = 1 is already past the last texel.
-    EXPECT_EQ(view.SamplePoint(lane, {1.0f, 1.0f}), T(kW - 1, kH - 1));
-    EXPECT_EQ(view.SamplePoint(lane, Uv(-0.5, 9.5), AddressMode::Clamp), T(0, kH - 1));
-    EXPECT_EQ(view.SamplePoint(lane, Uv(-20.0, -0.001), AddressMode::Clamp), T(0, 0));
+    EXPECT_EQ(view.SamplePoint(lane, {1.0f, 1.0f}), T(kViewW - 1, kViewH - 1));
+    EXPECT_EQ(view.SamplePoint(lane, ViewUv(-0.5, 9.5), AddressMode::Clamp), T(0, kViewH - 1));
+    EXPECT_EQ(view.SamplePoint(lane, ViewUv(-20.0, -0.001), AddressMode::Clamp), T(0, 0));
     // Repeat wraps the texel index modulo the size, negative coordinates included.
     EXPECT_EQ(view.SamplePoint(lane, {1.0f, 1.0f}, AddressMode::Repeat), T(0, 0));
-    EXPECT_EQ(view.SamplePoint(lane, Uv(-0.5, 9.5), AddressMode::Repeat), T(kW - 1, 1));
-    EXPECT_EQ(view.SamplePoint(lane, Uv(-5.5, -0.001), AddressMode::Repeat), T(2, kH - 1));
+    EXPECT_EQ(view.SamplePoint(lane, ViewUv(-0.5, 9.5), AddressMode::Repeat), T(kViewW - 1, 1));
+    EXPECT_EQ(view.SamplePoint(lane, ViewUv(-5.5, -0.001), AddressMode::Repeat), T(2, kViewH - 1));
     calls += 6;
   });
   // One fetch instruction and one texel per call.
@@ -74,34 +75,34 @@ TEST(SimViews, PointSamplingPicksTheTexelContainingTheCoordinate) {
 }
 
 TEST(SimViews, BilinearSamplingWeightsTheNearestTexelCentres) {
-  const Texture2D<float> texture = Ramp();
+  const Texture2D<float> texture = ViewRamp();
   int calls = 0;
   const ResourceTraffic traffic = Sample(texture, [&](const TextureView<float>& view, const ComputeLane& lane) {
     // Texel centres sit at +0.5: there the sample is the texel itself.
-    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(2.5, 3.5)), T(2, 3));
+    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(2.5, 3.5)), T(2, 3));
     // Midway between two centres: their mean, horizontally and vertically.
-    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(2.0, 3.5)), 0.5f * (T(1, 3) + T(2, 3)));
-    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(1.5, 5.0)), 0.5f * (T(1, 4) + T(1, 5)));
+    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(2.0, 3.5)), 0.5f * (T(1, 3) + T(2, 3)));
+    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(1.5, 5.0)), 0.5f * (T(1, 4) + T(1, 5)));
     // Midway between four centres: their mean.
-    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(3.0, 2.0)), 0.25f * (T(2, 1) + T(3, 1) + T(2, 2) + T(3, 2)));
+    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(3.0, 2.0)), 0.25f * (T(2, 1) + T(3, 1) + T(2, 2) + T(3, 2)));
     // A quarter of the way from one centre to the next: 0.75 / 0.25, then per axis.
-    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(1.75, 6.5)), 0.75f * T(1, 6) + 0.25f * T(2, 6));
-    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(0.5, 4.75)), 0.75f * T(0, 4) + 0.25f * T(0, 5));
-    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(1.75, 4.75)),
+    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(1.75, 6.5)), 0.75f * T(1, 6) + 0.25f * T(2, 6));
+    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(0.5, 4.75)), 0.75f * T(0, 4) + 0.25f * T(0, 5));
+    EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(1.75, 4.75)),
                     0.75f * (0.75f * T(1, 4) + 0.25f * T(2, 4)) + 0.25f * (0.75f * T(1, 5) + 0.25f * T(2, 5)));
     calls += 7;
     // At the border, half a texel out: Clamp repeats the edge texel, Repeat blends with the
     // opposite edge.
     for (const AddressMode mode : {AddressMode::Clamp, AddressMode::Repeat}) {
       const bool clamp = mode == AddressMode::Clamp;
-      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(0.0, 2.5), mode), clamp ? T(0, 2) : 0.5f * (T(kW - 1, 2) + T(0, 2)));
-      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(kW, 2.5), mode), clamp ? T(kW - 1, 2) : 0.5f * (T(kW - 1, 2) + T(0, 2)));
-      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(1.5, 0.0), mode), clamp ? T(1, 0) : 0.5f * (T(1, kH - 1) + T(1, 0)));
-      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(0.0, 0.0), mode),
-                      clamp ? T(0, 0) : 0.25f * (T(kW - 1, kH - 1) + T(0, kH - 1) + T(kW - 1, 0) + T(0, 0)));
+      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(0.0, 2.5), mode), clamp ? T(0, 2) : 0.5f * (T(kViewW - 1, 2) + T(0, 2)));
+      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(kViewW, 2.5), mode), clamp ? T(kViewW - 1, 2) : 0.5f * (T(kViewW - 1, 2) + T(0, 2)));
+      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(1.5, 0.0), mode), clamp ? T(1, 0) : 0.5f * (T(1, kViewH - 1) + T(1, 0)));
+      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(0.0, 0.0), mode),
+                      clamp ? T(0, 0) : 0.25f * (T(kViewW - 1, kViewH - 1) + T(0, kViewH - 1) + T(kViewW - 1, 0) + T(0, 0)));
       // A quarter past the last centre: Repeat weights the first column 0.25 across the wrap.
-      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, Uv(kW - 0.25, 2.5), mode),
-                      clamp ? T(kW - 1, 2) : 0.75f * T(kW - 1, 2) + 0.25f * T(0, 2));
+      EXPECT_FLOAT_EQ(view.SampleBilinear(lane, ViewUv(kViewW - 0.25, 2.5), mode),
+                      clamp ? T(kViewW - 1, 2) : 0.75f * T(kViewW - 1, 2) + 0.25f * T(0, 2));
       calls += 5;
     }
   });

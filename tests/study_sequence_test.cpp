@@ -16,7 +16,7 @@
 namespace study {
 namespace {
 
-constexpr int kWidth = 64, kHeight = 48;
+constexpr int kStudyWidth = 64, kStudyHeight = 48;
 
 SequenceConfig Frames(int frames) {
   SequenceConfig config;
@@ -24,10 +24,10 @@ SequenceConfig Frames(int frames) {
   return config;
 }
 
-sim::FrameSettings Settings() {
+sim::FrameSettings StudySettings() {
   sim::FrameSettings settings;
-  settings.width = kWidth;
-  settings.height = kHeight;
+  settings.width = kStudyWidth;
+  settings.height = kStudyHeight;
   settings.eqaa = {1, 1, 1};
   settings.pattern = raster::MakeBuiltinPattern("centre", 1);
   return settings;
@@ -39,7 +39,7 @@ struct Loaded {
 };
 
 Loaded Load(const std::string& name) {
-  const float aspect = float(kWidth) / float(kHeight);
+  const float aspect = float(kStudyWidth) / float(kStudyHeight);
   Loaded loaded{scenes::LoadScene(name, aspect), {}};
   loaded.frame = ToFrameScene(loaded.scene, aspect);
   return loaded;
@@ -48,8 +48,8 @@ Loaded Load(const std::string& name) {
 TEST(SequenceRenderer, EachFrameUsesItsSchedulePatternAndReportsItsJitter) {
   const Loaded wheel = Load("builtin:wheel");
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  const raster::JitterSchedule schedule = raster::JitterSchedule::Make("halton8", Settings().pattern);
-  SequenceRenderer renderer(machine, wheel.scene, wheel.frame, Settings(), schedule, Frames(3));
+  const raster::JitterSchedule schedule = raster::JitterSchedule::Make("halton8", StudySettings().pattern);
+  SequenceRenderer renderer(machine, wheel.scene, wheel.frame, StudySettings(), schedule, Frames(3));
   for (int frame = 0; frame < 3; ++frame) {
     renderer.Render(frame);
     const passes::FrameInputs inputs = renderer.Inputs();
@@ -60,8 +60,8 @@ TEST(SequenceRenderer, EachFrameUsesItsSchedulePatternAndReportsItsJitter) {
     EXPECT_DOUBLE_EQ(inputs.frameSeconds, 1.0 / 60.0);
     // The wheel turns: its pixels move, the background does not.
     float fastest = 0.0f;
-    for (int y = 0; y < kHeight; ++y) {
-      for (int x = 0; x < kWidth; ++x) {
+    for (int y = 0; y < kStudyHeight; ++y) {
+      for (int x = 0; x < kStudyWidth; ++x) {
         const glm::vec2 v = inputs.velocity->At(x, y);
         if (inputs.objectId->At(x, y) == sim::kNoObject) {
           EXPECT_EQ(v, glm::vec2(0.0f));
@@ -82,14 +82,14 @@ TEST(SequenceRenderer, PanVelocityIsThePathsPixelsPerFrame) {
   const Loaded plane = Load("builtin:textured-plane");
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   SequenceConfig config = Frames(2);
-  config.cameraPath = {.kind = scenes::CameraPathKind::Pan, .panPixelsPerFrame = 1.0f, .panImageHeight = kHeight};
-  SequenceRenderer renderer(machine, plane.scene, plane.frame, Settings(),
-                            raster::JitterSchedule::Make("none", Settings().pattern), config);
+  config.cameraPath = {.kind = scenes::CameraPathKind::Pan, .panPixelsPerFrame = 1.0f, .panImageHeight = kStudyHeight};
+  SequenceRenderer renderer(machine, plane.scene, plane.frame, StudySettings(),
+                            raster::JitterSchedule::Make("none", StudySettings().pattern), config);
   renderer.Render(1);
   const passes::FrameInputs inputs = renderer.Inputs();
   int panelPixels = 0;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kStudyHeight; ++y) {
+    for (int x = 0; x < kStudyWidth; ++x) {
       if (inputs.objectId->At(x, y) != 1) continue;  // the zone-plate panel, at the target's depth
       ++panelPixels;
       EXPECT_NEAR(inputs.velocity->At(x, y).x, -1.0f, 0.02f) << x << "," << y;
@@ -97,8 +97,8 @@ TEST(SequenceRenderer, PanVelocityIsThePathsPixelsPerFrame) {
     }
   }
   EXPECT_GT(panelPixels, 50);
-  ASSERT_EQ(inputs.objectId->At(kWidth / 2, kHeight / 2), 1u);
-  EXPECT_NEAR(inputs.velocity->At(kWidth / 2, kHeight / 2).x, -1.0f, 1e-3f);
+  ASSERT_EQ(inputs.objectId->At(kStudyWidth / 2, kStudyHeight / 2), 1u);
+  EXPECT_NEAR(inputs.velocity->At(kStudyWidth / 2, kStudyHeight / 2).x, -1.0f, 1e-3f);
 }
 
 // A one-sample pattern with sample-rate shading is a jittered projection: the frame equals the
@@ -113,12 +113,12 @@ TEST(SampleRateShading, AMovedSampleShadesLikeAJitteredProjection) {
   ASSERT_NE(offset, (raster::SampleOffset{0, 0}));
   FrameScene moved = plane.frame;
   for (glm::vec4& p : moved.clip.positions) {
-    p.x -= 2.0f * (static_cast<float>(offset.x) / 16.0f) / kWidth * p.w;
-    p.y += 2.0f * (static_cast<float>(offset.y) / 16.0f) / kHeight * p.w;
+    p.x -= 2.0f * (static_cast<float>(offset.x) / 16.0f) / kStudyWidth * p.w;
+    p.y += 2.0f * (static_cast<float>(offset.y) / 16.0f) / kStudyHeight * p.w;
   }
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   auto render = [&](const FrameScene& scene, const raster::SamplePattern& pattern, bool sampleRate) {
-    sim::FrameSettings settings = Settings();
+    sim::FrameSettings settings = StudySettings();
     settings.pattern = pattern;
     settings.sampleRateShading = sampleRate;
     sim::FramePipeline pipeline(machine, settings);
@@ -130,14 +130,14 @@ TEST(SampleRateShading, AMovedSampleShadesLikeAJitteredProjection) {
   const auto sampleRate = render(plane.frame, jittered, true);
   const auto centroid = render(plane.frame, jittered, false);
   float worstSampleRate = 0.0f, worstCentroid = 0.0f;
-  for (int y = 1; y + 1 < kHeight; ++y) {
-    for (int x = 1; x + 1 < kWidth; ++x) {
+  for (int y = 1; y + 1 < kStudyHeight; ++y) {
+    for (int x = 1; x + 1 < kStudyWidth; ++x) {
       // Interior pixels: the same object in the pixel and its 8 neighbours in both routes.
-      const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+      const std::size_t i = std::size_t(y) * kStudyWidth + std::size_t(x);
       bool interior = true;
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
-          const std::size_t j = std::size_t(y + dy) * kWidth + std::size_t(x + dx);
+          const std::size_t j = std::size_t(y + dy) * kStudyWidth + std::size_t(x + dx);
           interior = interior && reference.second[j] == reference.second[i] && sampleRate.second[j] == reference.second[i];
         }
       }
@@ -150,7 +150,7 @@ TEST(SampleRateShading, AMovedSampleShadesLikeAJitteredProjection) {
   }
   EXPECT_LT(worstSampleRate, 2e-3f);
   EXPECT_GT(worstCentroid, 2e-2f);
-  sim::FrameSettings multi = Settings();
+  sim::FrameSettings multi = StudySettings();
   multi.eqaa = {2, 2, 2};
   multi.pattern = raster::MakeBuiltinPattern("standard", 2);
   multi.sampleRateShading = true;
@@ -164,8 +164,8 @@ TEST(SequenceRenderer, PackedVelocityBuffersReachThePasses) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   SequenceConfig config = Frames(2);
   config.velocityBuffer = VelocityBuffer::Rg8Half;
-  SequenceRenderer renderer(machine, wheel.scene, wheel.frame, Settings(),
-                            raster::JitterSchedule::Make("none", Settings().pattern), config);
+  SequenceRenderer renderer(machine, wheel.scene, wheel.frame, StudySettings(),
+                            raster::JitterSchedule::Make("none", StudySettings().pattern), config);
   machine.ClearReports();
   renderer.Render(1);
   EXPECT_EQ(machine.Reports().back().name, "frame/velocity-pack");
@@ -195,8 +195,8 @@ ExperimentConfig SequenceExperiment() {
   ExperimentConfig config;
   config.scene = "builtin:wheel";
   config.gpu = "ps4-class";
-  config.width = kWidth;
-  config.height = kHeight;
+  config.width = kStudyWidth;
+  config.height = kStudyHeight;
   config.modes = {{1, 1, 1}};
   config.resolves = {};
   config.passes = {passes::ResolvePass("copy"), passes::ResolvePass("smaa")};
@@ -207,15 +207,15 @@ ExperimentConfig SequenceExperiment() {
   return config;
 }
 
-struct SequenceRun {
+struct StudySequenceRun {
   Study study;
   std::map<std::string, std::vector<std::vector<glm::vec4>>> images;  // per track folder, per frame
 };
 
-SequenceRun RunWithThreads(int threads) {
+StudySequenceRun RunWithThreads(int threads) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   const ExperimentConfig config = SequenceExperiment();
-  SequenceRun run;
+  StudySequenceRun run;
   StudyObserver observer;
   observer.sequenceImage = [&](const SequenceGroup*, const SequenceTrack* track, int, const sim::Texture2D<glm::vec4>& image) {
     run.images[track ? track->folder : "truth"].emplace_back(image.Texels().begin(), image.Texels().end());
@@ -230,7 +230,7 @@ bool SameCounters(const SequenceFrameCounters& a, const SequenceFrameCounters& b
 }
 
 TEST(SequenceStudy, OneAndTwoThreadsGiveTheSameSequence) {
-  const SequenceRun one = RunWithThreads(1), two = RunWithThreads(2);
+  const StudySequenceRun one = RunWithThreads(1), two = RunWithThreads(2);
   ASSERT_TRUE(one.study.sequence && two.study.sequence);
   EXPECT_EQ(one.images, two.images);
   const StudySequence &a = *one.study.sequence, &b = *two.study.sequence;
