@@ -245,16 +245,14 @@ std::uint64_t Machine::SetUpPixelWave(detail::ChunkState& chunk, std::span<const
                                       std::array<PixelLane, kWaveLanes>& lanes) {
   // Every lane's kind and the wave's EXEC mask exist before any lane runs, so a kernel reading a
   // quad neighbour's helper flag or the mask sees the final value, as on the hardware where EXEC
-  // is set before the shader starts (hw-facts §6.1). A quad's kinds come from its coverage as
-  // 4-bit masks (ClassifyQuadPixel's rule for all four pixels at once).
+  // is set before the shader starts (hw-facts §6.1).
   static_assert(raster::kBinSize % kTileSize == 0, "a bin holds whole heat-map tiles");
   std::uint64_t exec = 0;
   int active = 0;
   for (std::size_t k = 0; k < waveQuads.size(); ++k) {
     const raster::QuadFragment& quad = quads[waveQuads[k]];
-    const unsigned passed = quad.passed.LivePixels();
-    const unsigned dead = kind == DispatchKind::FullScreen ? quad.covered.LivePixels() & ~passed & 0xFu : 0u;
-    const unsigned helper = ~passed & ~dead & 0xFu;
+    const QuadLaneKinds kinds = ClassifyQuad(quad, kind);
+    const unsigned passed = kinds.active, helper = kinds.helper, dead = kinds.deadStencil;
     const auto count = [](unsigned mask) { return static_cast<std::uint32_t>(std::popcount(mask)); };
     chunk.lanes.lanesActive += count(passed);
     chunk.lanes.lanesHelper += count(helper);
@@ -267,7 +265,7 @@ std::uint64_t Machine::SetUpPixelWave(detail::ChunkState& chunk, std::span<const
       if (dead != 0) chunk.heat->AddOwned(quad.x, quad.y, LaneKind::DeadStencil, count(dead));
     } else {
       for (int p = 0; p < raster::kQuadPixels; ++p) {
-        chunk.heat->AddOwned(quad.x + (p & 1), quad.y + (p >> 1), ClassifyQuadPixel(quad, p, kind));
+        chunk.heat->AddOwned(quad.x + (p & 1), quad.y + (p >> 1), kinds.Of(p));
       }
     }
     exec |= std::uint64_t{passed | helper} << (k * raster::kQuadPixels);

@@ -46,10 +46,11 @@ void PackPixelWaves(std::span<const raster::QuadFragment> quads, WaveFlush flush
   if (!out.waveStarts.empty()) out.waveStarts.push_back(static_cast<std::uint32_t>(out.quads.size()));
 }
 
-LaneKind ClassifyQuadPixel(const raster::QuadFragment& quad, int quadPixel, DispatchKind kind) {
-  if (quad.passed.Pixel(quadPixel) != 0) return LaneKind::Active;
-  if (quad.covered.Pixel(quadPixel) != 0 && kind == DispatchKind::FullScreen) return LaneKind::DeadStencil;
-  return LaneKind::Helper;
+QuadLaneKinds ClassifyQuad(const raster::QuadFragment& quad, DispatchKind kind) {
+  constexpr unsigned kAllPixels = (1u << raster::kQuadPixels) - 1u;
+  const unsigned passed = quad.passed.LivePixels();
+  const unsigned dead = kind == DispatchKind::FullScreen ? quad.covered.LivePixels() & ~passed & kAllPixels : 0u;
+  return {.active = passed, .helper = ~passed & ~dead & kAllPixels, .deadStencil = dead};
 }
 
 }  // namespace sim

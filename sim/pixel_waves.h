@@ -26,10 +26,23 @@ struct PackedWaves {
 void PackPixelWaves(std::span<const raster::QuadFragment> quads, WaveFlush flush, PackedWaves& out,
                     LaneCounters& counters);
 
+// A launched quad's lanes by kind, one bit per quad pixel (bit p: pixel p); the three masks
+// partition the quad's four pixels.
+struct QuadLaneKinds {
+  unsigned active = 0;
+  unsigned helper = 0;
+  unsigned deadStencil = 0;
+
+  LaneKind Of(int quadPixel) const {
+    if ((active >> quadPixel & 1u) != 0) return LaneKind::Active;
+    return (deadStencil >> quadPixel & 1u) != 0 ? LaneKind::DeadStencil : LaneKind::Helper;
+  }
+};
+
 // A pixel that passed depth/stencil is active. One that was covered but failed is a dead lane in
 // a full-screen pass (the stencil culled it: seed 000 "Stencil Culling Inefficiencies") and a
 // helper in a draw (whole-quad mode runs it for derivatives, hw-facts §6.1); an uncovered pixel
 // of a launched quad is always a helper.
-LaneKind ClassifyQuadPixel(const raster::QuadFragment& quad, int quadPixel, DispatchKind kind);
+QuadLaneKinds ClassifyQuad(const raster::QuadFragment& quad, DispatchKind kind);
 
 }  // namespace sim

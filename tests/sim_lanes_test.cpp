@@ -97,6 +97,37 @@ std::vector<std::vector<LaneRecord>> CheckCheckerboardExec(int w, int h) {
   return waves;
 }
 
+// Every coverage a quad can have (covered pixels, and the passed ones among them) under each
+// pixel-shader kind: the three masks split the quad's pixels, and each pixel's kind follows the
+// rule of hw-facts §6.1 and seed 000 "Stencil Culling Inefficiencies", stated here per pixel.
+TEST(SimLanes, QuadLaneKindsSplitEveryCoverageByThePixelRule) {
+  for (const DispatchKind kind : {DispatchKind::Draw, DispatchKind::FullScreen}) {
+    for (unsigned covered = 0; covered < 16; ++covered) {
+      for (unsigned passed = 0; passed < 16; ++passed) {
+        if ((passed & ~covered) != 0) continue;
+        raster::QuadFragment quad;
+        for (int p = 0; p < raster::kQuadPixels; ++p) {
+          quad.covered.SetPixel(p, (covered >> p & 1u) != 0 ? 1u : 0u);
+          quad.passed.SetPixel(p, (passed >> p & 1u) != 0 ? 1u : 0u);
+        }
+        const QuadLaneKinds kinds = ClassifyQuad(quad, kind);
+        SCOPED_TRACE(::testing::Message() << DispatchKindName(kind) << " covered " << covered << " passed " << passed);
+        EXPECT_EQ(kinds.active | kinds.helper | kinds.deadStencil, 0xFu);
+        EXPECT_EQ(kinds.active & kinds.helper, 0u);
+        EXPECT_EQ(kinds.active & kinds.deadStencil, 0u);
+        EXPECT_EQ(kinds.helper & kinds.deadStencil, 0u);
+        for (int p = 0; p < raster::kQuadPixels; ++p) {
+          const bool isPassed = (passed >> p & 1u) != 0, isCovered = (covered >> p & 1u) != 0;
+          const LaneKind expected = isPassed                                          ? LaneKind::Active
+                                    : isCovered && kind == DispatchKind::FullScreen ? LaneKind::DeadStencil
+                                                                                    : LaneKind::Helper;
+          EXPECT_EQ(kinds.Of(p), expected) << "pixel " << p;
+        }
+      }
+    }
+  }
+}
+
 TEST(SimLanes, PixelWaveExecIsTheCheckerboardOfRunningLanes) {
   // Whole waves: every quad runs pixels 0 and 3, so every wave's mask is 1001 repeated.
   const std::vector<std::vector<LaneRecord>> full = CheckCheckerboardExec(64, 32);
