@@ -58,9 +58,8 @@ endif()
 # A target whose own code is not what anything times (the CLI test files: they drive the aasim
 # binary and read its files) sets the property AASIM_UNOPTIMISED and compiles at -O0, after
 # whichever level the build type or a sanitizer chose above.
-add_library(aasim_opt_override INTERFACE)
-target_compile_options(aasim_opt_override INTERFACE $<$<BOOL:$<TARGET_PROPERTY:AASIM_UNOPTIMISED>>:-O0>)
+target_compile_options(aasim_opt INTERFACE $<$<BOOL:$<TARGET_PROPERTY:AASIM_UNOPTIMISED>>:-O0>)
 
 # Every aasim library and executable links this one target.
 add_library(aasim_policy INTERFACE)
-target_link_libraries(aasim_policy INTERFACE aasim_warnings aasim_opt aasim_opt_override)
+target_link_libraries(aasim_policy INTERFACE aasim_warnings aasim_opt)

@@ -22,7 +22,7 @@ function(add_group)
   list(TRANSFORM cases PREPEND "${suite}.")
   list(JOIN cases ":" filter)
   set(name "${suite}")
-  if(part GREATER 0 OR split)
+  if(split)
     set(name "${suite}.part${part}")
   endif()
   string(APPEND content "add_test([==[${name}]==] \"${TEST_EXECUTABLE}\" [==[--gtest_filter=${filter}]==])\n"

@@ -64,7 +64,7 @@ struct HraaFrame {
   }
 };
 
-// HraaFrame k: the scene at every pixel's flipquad-split sample (pixel centres when `centres`).
+// Frame k: the scene at every pixel's flipquad-split sample (pixel centres when `centres`).
 HraaFrame RenderHraa(int width, int height, int k, const Scene& scene, const Motion& motion = {}, bool centres = false) {
   HraaFrame frame{{"colour", width, height, 16}, {"velocity", width, height, 8}, centres ? nullptr : &FlipQuadSplit().At(k), k};
   for (int y = 0; y < height; ++y) {

@@ -1,4 +1,4 @@
-// MetricsImage-quality metrics on synthetic pairs whose answers are known: identical images, constant
+// Image-quality metrics on synthetic pairs whose answers are known: identical images, constant
 // offsets built in the encoded domain (closed-form PSNR and SSIM), a step edge moved by one pixel,
 // flat colour patches; FLIP against a slow 2-D reference; argument checks and determinism.
 

@@ -146,7 +146,7 @@ TEST(PassesTscmaa, CandidatesBlendEightTenthsOfTheVarianceClippedHistory) {
     TscmaaFrame frame = MovingDisk(0);
     frame.index = t;
     frame.velocity.Fill({0.0f, 0.0f});
-    // TscmaaFrame 1 on: the background brighter (the edges stay where they are).
+    // Frame 1 on: the background brighter (the edges stay where they are).
     if (t >= 1) {
       for (glm::vec4& texel : frame.colour.Texels()) {
         if (texel.r < 0.5f) texel = glm::vec4(glm::vec3(texel) * 1.6f, 1.0f);

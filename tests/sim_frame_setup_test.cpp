@@ -236,7 +236,7 @@ TEST(SimFrameSetup, WithoutCompressedDepthTheEqualDrawLosesUnanchoredSamples) {
   EXPECT_EQ(flat.fragments.zPlaneRescues, 0u);
 }
 
-// ---- DrawReport order ----
+// ---- Draw order ----
 
 TEST(SimFrameSetup, FrontToBackDrawsLessOverdrawThanSubmissionOrder) {
   const Rendered submission = RenderWithSetup("builtin:default", 160, 90, {.eqaa = {8, 4, 2}});
