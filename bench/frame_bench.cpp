@@ -239,9 +239,14 @@ int RunBench(const BenchOptions& options) {
     sim::Machine machine(gpu);
     sim::FramePipeline pipeline(machine, sim::FrameSettings{});
     PassInstances instances = MakeInstances();
-    const FrameRun warmUp = RunFrame(options, geometry, machine, pipeline, instances);
-    std::printf("warm-up frame: %.1f ms (not counted)\n", warmUp.frameMs);
+    // A frame's results are released before the next frame runs, so each timed frame reuses the
+    // host memory of the one before, as a renderer reuses its targets. Keeping the warm-up's
+    // results (or the last frame's while the next ran) made the first two timed frames fault in
+    // fresh pages for every pass output: up to twice the steady time (docs/PERFORMANCE.md).
+    std::printf("warm-up frame: %.1f ms (not counted)\n",
+                RunFrame(options, geometry, machine, pipeline, instances).frameMs);
     for (int frame = 0; frame < options.frames; ++frame) {
+      last = FrameRun{};
       last = RunFrame(options, geometry, machine, pipeline, instances);
       frameMs.push_back(last.frameMs);
       passMs.resize(last.passes.size());

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -41,7 +42,7 @@ struct BenchOptions {
 };
 
 struct FrameResult {
-  std::vector<passes::PassOutput> outputs;        // per strategy
+  std::vector<passes::PassOutput> outputs;        // per strategy (released once checked, in the timed run)
   std::vector<double> ms;                          // per strategy
   std::vector<std::uint64_t> historyBytes;         // per strategy
   std::vector<double> estimatedMicroseconds;       // per strategy
@@ -56,9 +57,12 @@ struct Sequence {
   study::FrameScene frame;
 };
 
-// The pass over the sequence, one instance per strategy, with `threads` host threads.
-std::vector<FrameResult> RunPass(const passes::RegisteredPass& registered, const Sequence& sequence,
-                                 const BenchOptions& options, int threads) {
+// The pass over the sequence, one instance per strategy, with `threads` host threads. Each
+// frame's results go to frameDone(k, result) before the next frame runs, so a caller that lets
+// them go keeps the timed frames on reused host memory, as a renderer reuses its targets (holding
+// every frame's outputs made each frame fault in fresh pages: docs/PERFORMANCE.md, stop 26).
+void RunPass(const passes::RegisteredPass& registered, const Sequence& sequence, const BenchOptions& options,
+             int threads, const std::function<void(int, FrameResult&)>& frameDone) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   const passes::PassInfo& info = registered.info();
   const int samples = std::max(1, raster::JitterScheduleSamples(info.jitter));
@@ -73,7 +77,6 @@ std::vector<FrameResult> RunPass(const passes::RegisteredPass& registered, const
                                    raster::JitterSchedule::Make(info.jitter, settings.pattern), config);
   std::vector<std::unique_ptr<passes::Pass>> instances;
   for (std::size_t s = 0; s < info.strategies.size(); ++s) instances.push_back(registered.make(passes::PassSettings(info.name, info.settings)));
-  std::vector<FrameResult> frames;
   for (int k = 0; k < options.frames; ++k) {
     renderer.Render(k);
     machine.ClearReports();
@@ -93,26 +96,21 @@ std::vector<FrameResult> RunPass(const passes::RegisteredPass& registered, const
       result.historyBytes.push_back(history);
       result.estimatedMicroseconds.push_back(estimate);
     }
-    frames.push_back(std::move(result));
+    frameDone(k, result);
   }
-  return frames;
 }
 
-bool StrategiesIdentical(const std::vector<FrameResult>& frames) {
-  for (const FrameResult& frame : frames) {
-    for (const passes::PassOutput& output : frame.outputs) {
-      if (!passes::CompareOutputs(frame.outputs.front(), output).Identical()) return false;
-    }
+bool StrategiesIdentical(const FrameResult& frame) {
+  for (const passes::PassOutput& output : frame.outputs) {
+    if (!passes::CompareOutputs(frame.outputs.front(), output).Identical()) return false;
   }
   return true;
 }
 
-bool SameSequence(const std::vector<FrameResult>& a, const std::vector<FrameResult>& b) {
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    for (std::size_t s = 0; s < a[k].outputs.size(); ++s) {
-      if (!passes::CompareOutputs(a[k].outputs[s], b[k].outputs[s]).Identical()) return false;
-      if (a[k].historyBytes[s] != b[k].historyBytes[s]) return false;
-    }
+bool SameFrame(const FrameResult& a, const FrameResult& b) {
+  for (std::size_t s = 0; s < a.outputs.size(); ++s) {
+    if (!passes::CompareOutputs(a.outputs[s], b.outputs[s]).Identical()) return false;
+    if (a.historyBytes[s] != b.historyBytes[s]) return false;
   }
   return true;
 }
@@ -130,9 +128,18 @@ int RunBench(const BenchOptions& options) {
   for (const passes::RegisteredPass& registered : passes::AllPasses()) {
     const passes::PassInfo& info = registered.info();
     if (!info.temporal) continue;
-    const std::vector<FrameResult> frames = RunPass(registered, sequence, options, options.threads);
-    const bool identical = StrategiesIdentical(frames);
-    const bool deterministic = SameSequence(frames, RunPass(registered, sequence, options, 1));
+    // The one-thread run first, untimed and kept whole: each timed frame is checked against it
+    // and against the other strategy, then released.
+    std::vector<FrameResult> oneThread;
+    RunPass(registered, sequence, options, 1, [&](int, FrameResult& result) { oneThread.push_back(std::move(result)); });
+    std::vector<FrameResult> frames;
+    bool identical = true, deterministic = true;
+    RunPass(registered, sequence, options, options.threads, [&](int k, FrameResult& result) {
+      identical = identical && StrategiesIdentical(result);
+      deterministic = deterministic && SameFrame(oneThread[static_cast<std::size_t>(k)], result);
+      result.outputs.clear();
+      frames.push_back(std::move(result));
+    });
     allGood = allGood && identical && deterministic;
     nlohmann::ordered_json strategies = nlohmann::ordered_json::object();
     for (std::size_t s = 0; s < info.strategies.size(); ++s) {
