@@ -151,9 +151,8 @@ class TextureView {
   }
   // Float weights on decoded texels, whatever the format. Texel centres at +0.5, the same
   // weights as scenes::SampleBilinearRepeat for Repeat.
-  [[gnu::always_inline]] T SampleBilinearFloat(const LaneBase& lane, glm::vec2 uv,
-                                               AddressMode mode = AddressMode::Clamp,
-                                               glm::ivec2 offset = {0, 0}) const {
+  T SampleBilinearFloat(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
+                        glm::ivec2 offset = {0, 0}) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 4);
     const glm::vec2 texel = uv * glm::vec2(width_, height_) - 0.5f;
