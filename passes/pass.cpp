@@ -60,17 +60,6 @@ std::vector<float> PassLayer::Floats() const {
   return floats;
 }
 
-namespace {
-// Per-texel host conversions of a whole frame, by rows on the worker threads (independent
-// texels: the result does not depend on the thread count). convert(texel index) does one.
-template <typename Convert>
-void ByRows(int width, int height, Convert convert) {
-  const auto row = static_cast<std::size_t>(width);
-  sim::ParallelFor(static_cast<std::size_t>(height), [&](std::size_t y) {
-    for (std::size_t i = y * row; i < (y + 1) * row; ++i) convert(i);
-  });
-}
-}  // namespace
 
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear) {
   sim::Texture2D<glm::vec4> target(std::move(name), linear.Width(), linear.Height(), sim::Format::RGBA8Srgb);

@@ -22,6 +22,7 @@
 #include "raster/sample_pattern.h"
 #include "sim/dispatch.h"
 #include "sim/frame.h"
+#include "sim/parallel.h"
 
 namespace passes {
 
@@ -127,6 +128,16 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& te
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear);
 // The same into an RGBA8 sRGB texture of the frame's size a pass keeps across frames.
 void StoreSrgb8(const sim::Texture2D<glm::vec4>& linear, sim::Texture2D<glm::vec4>& target);
+// Per-texel host work on a whole frame (conversions, copies), by rows on the worker threads:
+// convert(texel index) does one texel and touches no other, so the result does not depend on the
+// thread count.
+template <typename Convert>
+void ByRows(int width, int height, Convert convert) {
+  const auto row = static_cast<std::size_t>(width);
+  sim::ParallelFor(static_cast<std::size_t>(height), [&](std::size_t y) {
+    for (std::size_t i = y * row; i < (y + 1) * row; ++i) convert(i);
+  });
+}
 // A texture a pass keeps across frames, (re)made when the frame size changes.
 template <typename T, typename... Args>
 sim::Texture2D<T>& FrameTexture(std::optional<sim::Texture2D<T>>& kept, const std::string& name, int width, int height,

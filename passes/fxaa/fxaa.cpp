@@ -2,7 +2,10 @@
 
 #include "passes/fxaa/fxaa.h"
 
+#include <cstdint>
+#include <cstring>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,17 +78,18 @@ class FxaaPass final : public Pass {
     StoreSrgb8(*frame.colour, colour);
     sim::Texture2D<glm::vec4>& rgbl = FrameTexture(rgbl_, "fxaa/rgbl", width, height, sim::Format::RGBA8Unorm);
     sim::Texture2D<glm::vec4>& target = FrameTexture(output_, "fxaa/output", width, height, sim::Format::RGBA8Unorm);
-    spans_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec4(0.0f));
+    spans_.assign(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);
 
     RunLuma(machine, colour, rgbl);
     PassOutput output;
     output.SetWorkSet(RunFxaa(machine, strategy, rgbl, target));
     output.colour = DecodedSrgb8("fxaa/output", target);
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) output.colour.At(x, y).a = frame.colour->At(x, y).a;
-    }
+    const std::span<glm::vec4> decoded = output.colour.Texels();
+    const std::span<const glm::vec4> input = frame.colour->Texels();
+    ByRows(width, height, [&](std::size_t i) { decoded[i].a = input[i].a; });
     output.layers.push_back(AlphaLayer(rgbl));
-    output.layers.push_back(SpanLayer(width, height));
+    // The record moves into its layer; the next frame fills a new one.
+    output.layers.push_back({"span", {"direction", "dstN", "dstP", "offset"}, width, height, std::move(spans_), {}, 0});
     return output;
   }
 
@@ -115,7 +119,7 @@ class FxaaPass final : public Pass {
       const FxaaQuality fxaa(params_, d.Read(rgbl));
       const sim::RwTextureView<glm::vec4> out = d.ReadWrite(target);
       const sim::CounterView searchFetches = d.Counter("search_fetches");
-      glm::vec4* spans = spans_.data();
+      float* spans = spans_.data();
       const int width = rgbl.Width(), height = rgbl.Height();
       return [=](const sim::LaneBase& lane, int x, int y) {
         const EdgeResult result = fxaa.Edge(lane, x, y, fxaa.Contrast(lane, x, y));
@@ -124,31 +128,27 @@ class FxaaPass final : public Pass {
         if (lane.helper) return;
         const Span& s = result.span;
         const float size = static_cast<float>(s.horizontal ? width : height);
-        spans[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
-            glm::vec4(s.horizontal ? 1.0f : 2.0f, s.dstN * size, s.dstP * size, s.pixelOffset);
+        const glm::vec4 record(s.horizontal ? 1.0f : 2.0f, s.dstN * size, s.dstP * size, s.pixelOffset);
+        std::memcpy(spans + 4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)),
+                    &record, sizeof record);
       };
     };
     return workSet_.Run(machine, strategy, kKernels, rgbl.Width(), rgbl.Height(), makeDetect, makeEdge);
   }
 
+  // rgbl's alpha codes, read back as k / 255 like the texture's UNORM view.
   static PassLayer AlphaLayer(const sim::Texture2D<glm::vec4>& rgbl) {
-    PassLayer layer{"luma", {"Y"}, rgbl.Width(), rgbl.Height(), {}, {}, 0};
     const std::span<const std::uint8_t> codes = rgbl.Codes();  // RGBA8: alpha is every fourth byte
-    layer.values.reserve(codes.size() / 4);
-    for (std::size_t i = 3; i < codes.size(); i += 4) layer.values.push_back(sim::Unorm8ToFloat(codes[i]));
-    return layer;
-  }
-
-  PassLayer SpanLayer(int width, int height) const {
-    PassLayer layer{"span", {"direction", "dstN", "dstP", "offset"}, width, height, {}, {}, 0};
-    for (const glm::vec4& span : spans_) layer.values.insert(layer.values.end(), {span.x, span.y, span.z, span.w});
-    return layer;
+    std::vector<std::uint8_t> alpha(codes.size() / 4);
+    for (std::size_t i = 0; i < alpha.size(); ++i) alpha[i] = codes[4 * i + 3];
+    return {.name = "luma", .channels = {"Y"}, .width = rgbl.Width(), .height = rgbl.Height(), .values = {},
+            .codes = std::move(alpha), .codeChannels = 1};
   }
 
   Params params_;
   WorkSet workSet_{"fxaa"};
   std::optional<sim::Texture2D<glm::vec4>> colour_, rgbl_, output_;
-  std::vector<glm::vec4> spans_;  // the consume's inspection record, one per pixel
+  std::vector<float> spans_;  // the consume's inspection record: direction, dstN, dstP, offset per pixel
 };
 
 // The quality_preset values Fxaa3_11.h defines: its step tables' presets.
@@ -195,9 +195,9 @@ const PassInfo& Info() {
       .studiedDispatches = {kEdgeDispatch},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
       // The sRGB colour target, rgbl, the output and its decoded copy (vec4 each), the span record
-      // and its layer (vec4 each), the luma layer, the stencil byte and a queue entry.
-      .bytesPerPixel = 6 * sizeof(glm::vec4) + sizeof(float) + 1 + sizeof(std::uint32_t),
-      .layerBytesPerPixel = (1 + 4) * sizeof(float),  // luma, span
+      // (vec4, moved into its layer), the luma layer's code, the stencil byte and a queue entry.
+      .bytesPerPixel = 5 * sizeof(glm::vec4) + 1 + 1 + sizeof(std::uint32_t),
+      .layerBytesPerPixel = 1 + 4 * sizeof(float),  // luma (codes), span
       .temporal = false,
   };
   return info;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -220,11 +221,9 @@ class FxaaMiniEnginePass final : public Pass {
     sim::Texture2D<float>& luma = FrameTexture(luma_, "fxaa-miniengine/luma", width, height, sim::Format::R8Unorm);
     // The renderer's store of the frame (host side), and a luma target with nothing of an
     // earlier frame (MiniEngine's holds whatever last wrote it).
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) {
-        colour.At(x, y) = sim::Quantize(sim::Format::R11G11B10Float, glm::vec3(frame.colour->At(x, y)));
-      }
-    }
+    const std::span<glm::vec3> stored = colour.Texels();
+    const std::span<const glm::vec4> input = frame.colour->Texels();
+    ByRows(width, height, [&](std::size_t i) { stored[i] = sim::Quantize(sim::Format::R11G11B10Float, glm::vec3(input[i])); });
     luma.Fill(0.0f);
     std::vector<float> items(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);
     WorkSetShape total;
@@ -251,9 +250,8 @@ class FxaaMiniEnginePass final : public Pass {
     output.SetWorkSet(total);
     output.paddingItems = padding;
     output.colour = sim::Texture2D<glm::vec4>("fxaa-miniengine/output", width, height, 4);
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) output.colour.At(x, y) = glm::vec4(colour.At(x, y), 1.0f);
-    }
+    const std::span<glm::vec4> out = output.colour.Texels();
+    ByRows(width, height, [&](std::size_t i) { out[i] = glm::vec4(stored[i], 1.0f); });
     output.layers.push_back(LayerOf("luma", luma));
     output.layers.push_back({"items", {"Y"}, width, height, std::move(items), {}, 0});
     return output;
