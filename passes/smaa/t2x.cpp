@@ -36,7 +36,7 @@ const sim::Texture2D<glm::vec2>& StoreUvVelocity(const FrameInputs& frame, std::
   const glm::vec2 toUv(1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
   const std::span<const glm::vec2> pixels = frame.velocity->Texels();
   const std::span<glm::vec2> uv = velocity.Texels();
-  for (std::size_t i = 0; i < uv.size(); ++i) uv[i] = sim::Quantize(sim::Format::RG16Float, pixels[i] * toUv);
+  ByRows(width, height, [&](std::size_t i) { uv[i] = sim::Quantize(sim::Format::RG16Float, pixels[i] * toUv); });
   return velocity;
 }
 
