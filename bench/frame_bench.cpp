@@ -242,7 +242,7 @@ int RunBench(const BenchOptions& options) {
     // A frame's results are released before the next frame runs, so each timed frame reuses the
     // host memory of the one before, as a renderer reuses its targets. Keeping the warm-up's
     // results (or the last frame's while the next ran) made the first two timed frames fault in
-    // fresh pages for every pass output: up to twice the steady time (docs/PERFORMANCE.md).
+    // fresh pages for every pass output: up to three times the steady time (docs/PERFORMANCE.md).
     std::printf("warm-up frame: %.1f ms (not counted)\n",
                 RunFrame(options, geometry, machine, pipeline, instances).frameMs);
     for (int frame = 0; frame < options.frames; ++frame) {

@@ -6,7 +6,6 @@
 
 #include "sim/check.h"
 #include "sim/formats.h"
-#include "sim/parallel.h"
 
 namespace passes {
 
@@ -59,7 +58,6 @@ std::vector<float> PassLayer::Floats() const {
   for (std::size_t i = 0; i < floats.size(); ++i) floats[i] = Value(i);
   return floats;
 }
-
 
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear) {
   sim::Texture2D<glm::vec4> target(std::move(name), linear.Width(), linear.Height(), sim::Format::RGBA8Srgb);
