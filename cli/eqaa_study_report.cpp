@@ -21,7 +21,6 @@ using study::EqaaStudyRow;
 // 001's HRAA goals): 8xCRAA 0.25 ms, SMAA 0.9 ms.
 constexpr double kSeedCraaMilliseconds = 0.25;
 constexpr double kSeedSmaaMilliseconds = 0.9;
-constexpr double kSeedPixels = 1920.0 * 1080.0;
 
 double PerPixel(std::uint64_t bytes, std::uint64_t pixels) {
   return pixels == 0 ? 0.0 : static_cast<double>(bytes) / static_cast<double>(pixels);
@@ -86,7 +85,7 @@ struct SeedComparison {
 SeedComparison CompareWithSeed(const study::Study& study, const std::vector<EqaaStudyRow>& rows) {
   SeedComparison comparison;
   if (rows.empty()) return comparison;
-  comparison.scale = kSeedPixels / static_cast<double>(rows.front().pixels);
+  comparison.scale = kSeedTimingPixels / static_cast<double>(rows.front().pixels);
   if (const std::optional<EqaaStudyRow> craa = CraaLut8(rows, study)) {
     comparison.craaMs = craa->resolveMicroseconds / 1000.0 * comparison.scale;
   }

@@ -134,7 +134,8 @@ PixelOwnership ComputeOwnership(const raster::RasterResult& result, int width, i
 
 std::vector<std::uint8_t> CoverageImage(const PixelOwnership& ownership) {
   std::vector<std::uint8_t> image(ownership.coverage.size());
-  std::transform(ownership.coverage.begin(), ownership.coverage.end(), image.begin(), EncodeSrgb8);
+  std::transform(ownership.coverage.begin(), ownership.coverage.end(), image.begin(),
+                 [](float coverage) { return EncodeSrgb8(coverage); });
   return image;
 }
 

@@ -9,6 +9,10 @@
 
 namespace cli {
 
+// The seeds' timing tables are for 1080p frames (seed 001, "Single Pass / Timing (ms)" and the
+// temporal table): the report scales aasim's estimates to this many pixels to set them beside.
+inline constexpr double kSeedTimingPixels = 1920.0 * 1080.0;
+
 // Non-finite values (a score with nothing to average) are null.
 inline nlohmann::ordered_json Number(double value) {
   return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);

@@ -295,7 +295,6 @@ const std::vector<SeedTiming>& SeedTimings() {
   };
   return kTimings;
 }
-constexpr double kSeedPixels = 1920.0 * 1080.0;
 
 // The timing's estimate on the pass's cheapest strategy at the run's size, scaled to 1080p by
 // pixel count; nullopt when the pass did not run.
@@ -312,7 +311,7 @@ std::optional<double> Estimated1080pMs(const study::Study& study, const SeedTimi
                              std::find(timing.dispatches.begin(), timing.dispatches.end(), report.name) != timing.dispatches.end();
         if (counted) microseconds += report.time.totalMicroseconds;
       }
-      const double ms = microseconds / 1000.0 * kSeedPixels / pixels;
+      const double ms = microseconds / 1000.0 * kSeedTimingPixels / pixels;
       best = best ? std::min(*best, ms) : ms;
     }
   }
