@@ -50,6 +50,9 @@ struct KernelInfo {
   std::string_view source = {};
 };
 
+// Read, ReadWrite and Counter register a binding in call order, and the report lists bindings in
+// that order: several in one constructor call take braces ({...} evaluates left to right), since
+// parenthesised arguments are evaluated in an unspecified order (GCC and clang differ).
 class Dispatch {
  public:
   Dispatch(std::string name, KernelInfo kernel);

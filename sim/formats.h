@@ -126,10 +126,10 @@ template <glm::length_t N>
   const __m128i bytes = _mm_cvtsi32_si128(static_cast<int>(word));
   const __m128i ints = _mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero);
   const __m128 floats = _mm_mul_ps(_mm_cvtepi32_ps(ints), _mm_set1_ps(1.0f / 255.0f));
-  glm::vec4 texel;
-  static_assert(sizeof(texel) == sizeof(floats));
-  std::memcpy(&texel, &floats, sizeof(texel));
-  return texel;
+  // Lane by lane with shuffles: a memcpy into glm::vec4 went through the stack as two 8-byte
+  // loads of a 16-byte store, which stalls store forwarding on every fetch.
+  return {_mm_cvtss_f32(floats), _mm_cvtss_f32(_mm_shuffle_ps(floats, floats, 1)),
+          _mm_cvtss_f32(_mm_shuffle_ps(floats, floats, 2)), _mm_cvtss_f32(_mm_shuffle_ps(floats, floats, 3))};
 #else
   return {Unorm8ToFloat(word & 0xFFu), Unorm8ToFloat(word >> 8 & 0xFFu), Unorm8ToFloat(word >> 16 & 0xFFu),
           Unorm8ToFloat(word >> 24)};

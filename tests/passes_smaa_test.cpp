@@ -10,6 +10,7 @@
 #include <functional>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "passes/registry.h"
 #include "passes_test_util.h"
@@ -277,6 +278,22 @@ TEST(SmaaSymmetry, TransposingTheImageTransposesEdgesWeightsAndOutput) {
       }
     }
   }
+}
+
+// ---- The report ----
+
+// The report lists a dispatch's bindings in the order its kernel declares them (sim/dispatch.h),
+// under every compiler: the blend reads the colour, then the weights. Declared as arguments of
+// one parenthesised call, GCC registered them the other way round and clang this way.
+TEST(SmaaReport, TheBlendListsItsBindingsInDeclarationOrder) {
+  const auto image = GreyImage(16, 8, [](int x, int) { return x < 8 ? kSmaaDark : kSmaaBright; });
+  const SmaaRun run = RunSmaa("smaa", image);
+  const auto blend = std::find_if(run.reports.begin(), run.reports.end(),
+                                  [](const sim::DispatchReport& r) { return r.name == "smaa/neighbourhood-blending"; });
+  ASSERT_NE(blend, run.reports.end());
+  std::vector<std::string> names;
+  for (const sim::ResourceTraffic& resource : blend->resources) names.push_back(resource.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"smaa/colour", "smaa/weights", "smaa/output"}));
 }
 
 // ---- Presets ----

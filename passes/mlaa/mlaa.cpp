@@ -229,7 +229,7 @@ class MlaaPass final : public Pass {
       };
     };
     auto makeBlend = [&](sim::Dispatch& d) {
-      const LineTracer tracer(config, axis, d.Read(targets.edges), d.Counter("trace_steps"));
+      const LineTracer tracer{config, axis, d.Read(targets.edges), d.Counter("trace_steps")};
       // The PS3 blended the frame buffer's gamma codes; linear_blend reads and writes through
       // sRGB views instead, as SMAA's neighbourhood blending does (aa-facts §1.9).
       const sim::Format view = config.linearBlend ? sim::Format::RGBA8Srgb : sim::Format::RGBA8Unorm;

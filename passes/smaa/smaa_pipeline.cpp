@@ -91,7 +91,7 @@ void Smaa1x::NeighbourhoodBlend(sim::Machine& machine, const sim::Texture2D<glm:
   sim::Dispatch d(names_.blending, velocity != nullptr ? kBlendReprojection : kBlend);
   std::optional<sim::TextureView<glm::vec2>> velocityView;
   if (velocity != nullptr) velocityView = d.Read(*velocity);
-  const NeighbourhoodBlending kernel(metrics, d.Read(colour), d.Read(targets.weights), velocityView);
+  const NeighbourhoodBlending kernel{metrics, d.Read(colour), d.Read(targets.weights), velocityView};
   const sim::RwTextureView<glm::vec4> out = d.ReadWrite(target);
   const sim::FullScreenCall call{.width = colour.Width(), .height = colour.Height()};
   if (blend == Blend::Replace) {

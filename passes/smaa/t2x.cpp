@@ -95,8 +95,8 @@ class TemporalHistory {
       sim::Dispatch d(pass_ + "/resolve", config_.reprojection ? kResolve : kResolveAverage);
       std::optional<sim::TextureView<glm::vec2>> velocity;
       if (config_.reprojection) velocity = d.Read(*velocity_);
-      const TemporalResolve resolve(Metrics::Of(width, height), d.Read(current), d.Read(previous), velocity,
-                                    config_.weightScale);
+      const TemporalResolve resolve{Metrics::Of(width, height), d.Read(current), d.Read(previous), velocity,
+                                    config_.weightScale};
       const sim::RwTextureView<glm::vec4> out = d.ReadWrite(output);
       machine.FullScreen(d, {.width = width, .height = height},
                          [&](sim::PixelLane& lane) { out.Store(lane, lane.x, lane.y, resolve(lane, lane.x, lane.y)); });
