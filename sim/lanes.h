@@ -252,7 +252,13 @@ struct ComputeLane : LaneBase {
   }
 
  private:
-  std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const;
+  // Inline: every LDS access computes an address, and called out of line it cost about 3 % of
+  // CMAA2's detect; the error path stays out of line.
+  [[gnu::always_inline]] std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
+    if (byteOffset + bytes > chunk->lds.size()) [[unlikely]] ThrowLdsOutOfRange(byteOffset);
+    return chunk->lds.data() + byteOffset;
+  }
+  [[noreturn, gnu::cold, gnu::noinline]] void ThrowLdsOutOfRange(std::size_t byteOffset) const;
   template <typename T, typename Op>
   T LdsRmw(std::size_t index, Op op) const {
     static_assert(std::is_integral_v<T>, "LDS atomics are defined on integers");

@@ -28,12 +28,9 @@ std::array<float, 3> PixelLane::SampleBarycentrics(int sample) const {
   return raster::PerspectiveBarycentrics(*triangle, at[0], at[1]);
 }
 
-std::byte* ComputeLane::LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
-  if (byteOffset + bytes > chunk->lds.size()) {
-    throw KernelError(chunk->dispatch->name + ": LDS access at byte " + std::to_string(byteOffset) +
-                      " beyond the declared " + std::to_string(chunk->lds.size()) + " bytes");
-  }
-  return chunk->lds.data() + byteOffset;
+void ComputeLane::ThrowLdsOutOfRange(std::size_t byteOffset) const {
+  throw KernelError(chunk->dispatch->name + ": LDS access at byte " + std::to_string(byteOffset) +
+                    " beyond the declared " + std::to_string(chunk->lds.size()) + " bytes");
 }
 
 std::byte* detail::ChunkState::PrivateAt(const void* type, std::size_t size, int thread) {

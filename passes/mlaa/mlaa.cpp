@@ -204,8 +204,10 @@ class MlaaPass final : public Pass {
         const glm::vec4 texel = in.Load(lane, x, y);
         copy.Store(lane, x, y, texel);
         const glm::vec3 c(texel);
-        // The edge between p0 (upper or left) and p1, and its gradient class.
-        const auto test = [&](glm::ivec2 p0, glm::vec3 c0, glm::ivec2 p1, glm::vec3 c1) {
+        // The edge between p0 (upper or left) and p1. Forced inline (GCC's spelling for a lambda):
+        // GCC kept it as a call, about 18 % of each detect dispatch (docs/PERFORMANCE.md).
+        const auto test = [&](glm::ivec2 p0, glm::vec3 c0, glm::ivec2 p1,
+                              glm::vec3 c1) __attribute__((always_inline)) {
           const bool depthEdge = z && DepthEdge(config, z->Load(lane, p0.x, p0.y), z->Load(lane, p1.x, p1.y));
           return IsEdge(config, c0, c1, depthEdge);
         };
