@@ -252,8 +252,8 @@ struct ComputeLane : LaneBase {
   }
 
  private:
-  // Inline: every LDS access computes an address, and called out of line it cost about 3 % of
-  // CMAA2's detect; the error path stays out of line.
+  // Inline, with the error path out of line: every LDS access computes an address, and as a call
+  // it cost CMAA2's queue form about 30 % (docs/PERFORMANCE.md, "Stop 28").
   [[gnu::always_inline]] std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
     if (byteOffset + bytes > chunk->lds.size()) [[unlikely]] ThrowLdsOutOfRange(byteOffset);
     return chunk->lds.data() + byteOffset;
