@@ -127,7 +127,7 @@ template <glm::length_t N>
   const __m128i ints = _mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero);
   const __m128 floats = _mm_mul_ps(_mm_cvtepi32_ps(ints), _mm_set1_ps(1.0f / 255.0f));
   // Lane by lane with shuffles: a memcpy into glm::vec4 went through the stack as two 8-byte
-  // loads of a 16-byte store, which stalls store forwarding on every fetch.
+  // loads of a 16-byte store on every fetch (docs/PERFORMANCE.md, "Stop 28").
   return {_mm_cvtss_f32(floats), _mm_cvtss_f32(_mm_shuffle_ps(floats, floats, 1)),
           _mm_cvtss_f32(_mm_shuffle_ps(floats, floats, 2)), _mm_cvtss_f32(_mm_shuffle_ps(floats, floats, 3))};
 #else

@@ -253,7 +253,7 @@ struct ComputeLane : LaneBase {
 
  private:
   // Inline, with the error path out of line: every LDS access computes an address, and as a call
-  // it cost CMAA2's queue form about 30 % (docs/PERFORMANCE.md, "Stop 28").
+  // it cost CMAA2's queue form about a third of its time (docs/PERFORMANCE.md, "Stop 28").
   [[gnu::always_inline]] std::byte* LdsAddress(std::size_t byteOffset, std::size_t bytes) const {
     if (byteOffset + bytes > chunk->lds.size()) [[unlikely]] ThrowLdsOutOfRange(byteOffset);
     return chunk->lds.data() + byteOffset;

@@ -122,7 +122,7 @@ class FxaaQuality {
 
  private:
   // FxaaTexOff at the pixel centre: the (clamped) neighbour's texel. Inlined: called, it returned
-  // the vec4 through the stack on every fetch (6-9 % of the pass, docs/PERFORMANCE.md).
+  // the vec4 through the stack on every fetch (docs/PERFORMANCE.md, "Stop 28").
   [[gnu::always_inline]] glm::vec4 Texel(const sim::LaneBase& lane, int x, int y) const {
     return rgbl_.Load(lane, std::clamp(x, 0, rgbl_.Width() - 1), std::clamp(y, 0, rgbl_.Height() - 1));
   }
