@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -15,6 +17,11 @@ inline double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t mid = values.size() / 2;
   return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
+// Whether --pass chose this pass (no --pass: every pass).
+inline bool Selected(const std::vector<std::string>& chosen, std::string_view name) {
+  return chosen.empty() || std::ranges::find(chosen, name) != chosen.end();
 }
 
 // Parses the command line, then returns run()'s exit code; errors are one stderr line prefixed with

@@ -45,10 +45,6 @@ struct BenchOptions {
   bool dispatchTimes = false;
 };
 
-bool Selected(const BenchOptions& options, std::string_view name) {
-  return options.passes.empty() || std::ranges::find(options.passes, name) != options.passes.end();
-}
-
 // One run of a pass under one strategy.
 struct StrategyRun {
   passes::Strategy strategy;
@@ -123,7 +119,7 @@ FrameRun RunFrame(const BenchOptions& options, const sim::FrameGeometry& geometr
   for (std::size_t p = 0; p < registered.size(); ++p) {
     const passes::PassInfo& info = registered[p].info();
     const int samples = info.eqaaSamples;
-    if (!Selected(options, info.name)) {
+    if (!bench::Selected(options.passes, info.name)) {
       run.passes.emplace_back();
       continue;
     }

@@ -39,6 +39,13 @@ struct BenchOptions {
   int frames = 8;
   int threads = tbb::info::default_concurrency();
   std::string json;
+  std::vector<std::string> passes;  // empty: every registered temporal pass
+  bool dispatchTimes = false;
+};
+
+struct DispatchTime {
+  std::string name;
+  double ms = 0.0;
 };
 
 struct FrameResult {
@@ -46,6 +53,7 @@ struct FrameResult {
   std::vector<double> ms;                          // per strategy
   std::vector<std::uint64_t> historyBytes;         // per strategy
   std::vector<double> estimatedMicroseconds;       // per strategy
+  std::vector<std::vector<DispatchTime>> dispatches;  // per strategy, in order
 };
 
 double MsSince(std::chrono::steady_clock::time_point start) {
@@ -87,8 +95,10 @@ void RunPass(const passes::RegisteredPass& registered, const Sequence& sequence,
       result.ms.push_back(MsSince(start));
       std::uint64_t history = 0;
       double estimate = 0.0;
+      std::vector<DispatchTime>& dispatches = result.dispatches.emplace_back();
       for (const sim::DispatchReport& report : machine.TakeReports()) {
         estimate += report.time.totalMicroseconds;
+        dispatches.push_back({report.name, report.hostMilliseconds});
         for (const sim::ResourceTraffic& traffic : report.resources) {
           if (passes::IsHistoryResource(traffic.name)) history += traffic.bytesRead + traffic.bytesWritten;
         }
@@ -98,6 +108,16 @@ void RunPass(const passes::RegisteredPass& registered, const Sequence& sequence,
     }
     frameDone(k, result);
   }
+}
+
+// Host time of each dispatch of the last frame under strategy s, and the pass's time outside them.
+void PrintDispatchTimes(const FrameResult& frame, std::size_t s) {
+  double inDispatches = 0.0;
+  for (const DispatchTime& dispatch : frame.dispatches[s]) {
+    std::printf("    %-40s %8.1f ms (last frame)\n", dispatch.name.c_str(), dispatch.ms);
+    inDispatches += dispatch.ms;
+  }
+  std::printf("    %-40s %8.1f ms (last frame)\n", "outside dispatches", frame.ms[s] - inDispatches);
 }
 
 bool StrategiesIdentical(const FrameResult& frame) {
@@ -127,7 +147,7 @@ int RunBench(const BenchOptions& options) {
   bool allGood = true;
   for (const passes::RegisteredPass& registered : passes::AllPasses()) {
     const passes::PassInfo& info = registered.info();
-    if (!info.temporal) continue;
+    if (!info.temporal || !bench::Selected(options.passes, info.name)) continue;
     // The one-thread run first, untimed and kept whole: each timed frame is checked against it
     // and against the other strategy, then released.
     std::vector<FrameResult> oneThread;
@@ -151,6 +171,7 @@ int RunBench(const BenchOptions& options) {
                   std::string(info.name).c_str(), strategy.c_str(), std::string(info.jitter).c_str(),
                   bench::Median(ms), static_cast<double>(last.historyBytes[s]) / (double(kWidth) * kHeight),
                   last.estimatedMicroseconds[s]);
+      if (options.dispatchTimes) PrintDispatchTimes(last, s);
       strategies[strategy] = {{"ms_per_frame", ms},
                               {"history_bytes_last_frame", last.historyBytes[s]},
                               {"estimated_us_last_frame", last.estimatedMicroseconds[s]}};
@@ -190,6 +211,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 1000))
       ->capture_default_str();
   app.add_option("--threads", options.threads, "Worker threads [default: all cores]")->check(CLI::Range(1, 1024));
+  app.add_option("--pass", options.passes, "Time only this registered temporal pass (repeatable) [default: every one]")
+      ->type_name("NAME")
+      ->check([](const std::string& name) {
+        try {
+          return passes::PassByName(name).info().temporal ? std::string() : name + " is not a temporal pass";
+        } catch (const std::exception& error) {
+          return std::string(error.what());
+        }
+      });
+  app.add_flag("--dispatch-times", options.dispatchTimes,
+               "Also print each dispatch's host time in the last frame, and the pass's time outside them");
   app.add_option("--json", options.json, "Also write the results as JSON to FILE")->type_name("FILE");
   return bench::ParseAndRun(app, argc, argv, [&] { return RunBench(options); });
 }
