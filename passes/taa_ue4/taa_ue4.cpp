@@ -111,7 +111,9 @@ struct Resolve {
   sim::RwTextureView<glm::vec4> out;
   sim::CounterView clipped, offscreen, responsive;
   Config config;
-  glm::vec2 jitter;
+  // Step 3's Gaussian weights of the nine samples: the jitter is the frame's, so they are the
+  // same for every pixel (GaussianWeights).
+  std::array<float, 9> gaussian;
   int width, height;
   bool useHistory;
 
@@ -162,8 +164,7 @@ struct Resolve {
     glm::vec3 sum(0.0f);
     float weights = 0.0f;
     for (std::size_t i = 0; i < samples.size(); ++i) {
-      const float w = ReconstructionWeight(glm::vec2(temporal::kOffsets3x3[i]) + jitter) *
-                      (config.lumaWeight ? LumaWeight(samples[i]) : 1.0f);
+      const float w = gaussian[i] * (config.lumaWeight ? LumaWeight(samples[i]) : 1.0f);
       sum += samples[i] * w;
       weights += w;
     }
@@ -180,6 +181,16 @@ struct Resolve {
                             config.antiFlicker);
   }
 };
+
+// The reconstruction weight of each 3x3 sample, offset from this pixel's centre by its texel
+// offset plus the frame's jitter.
+std::array<float, 9> GaussianWeights(glm::vec2 jitter) {
+  std::array<float, 9> weights{};
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    weights[i] = ReconstructionWeight(glm::vec2(temporal::kOffsets3x3[i]) + jitter);
+  }
+  return weights;
+}
 
 template <typename T>
 std::optional<sim::TextureView<T>> ReadIf(sim::Dispatch& d, const sim::Texture2D<T>* texture) {
@@ -224,7 +235,7 @@ PassOutput TaaUe4Pass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
                         .offscreen = d.Counter("taa-ue4/history_offscreen"),
                         .responsive = d.Counter("taa-ue4/responsive_pixels"),
                         .config = config_,
-                        .jitter = frame.jitter,
+                        .gaussian = GaussianWeights(frame.jitter),
                         .width = width,
                         .height = height,
                         .useHistory = hasHistory_ && !resized && frame.frameIndex != 0};
