@@ -5,7 +5,9 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "passes/cmaa2/cmaa2_kernels.h"
 #include "passes/work_set.h"
@@ -102,7 +104,7 @@ Config ConfigOf(const PassSettings& settings) {
   return config;
 }
 
-class Cmaa2Pass final : public Pass {
+class Cmaa2Pass final : public Pass, public Stage {
  public:
   explicit Cmaa2Pass(const Config& config)
       : config_(config), workSet_(cmaa2::Info().name), control_("cmaa2/control", 16),
@@ -111,6 +113,9 @@ class Cmaa2Pass final : public Pass {
   const PassInfo& Info() const override { return cmaa2::Info(); }
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override;
+  Targets Process(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override;
+  PassLayer EdgesLayer() const override;
+  PassLayer CandidatesLayer(Strategy strategy) const override;
 
  private:
   // EdgesColor2x2CS's arithmetic per pixel (docs/cmaa2.md "Waves").
@@ -218,21 +223,6 @@ class Cmaa2Pass final : public Pass {
     machine.ComputeIndirect(d, {.arguments = &arguments_, .offset = 0, .groupSize = kApplyGroup}, apply);
   }
 
-  static PassLayer EdgesLayer(const sim::Texture2D<std::uint32_t>& edges, int width, int height) {
-    PassLayer layer{"edges", {"Y"}, width, height, {}, {}, 0};
-    layer.values.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) layer.values.push_back(static_cast<float>((edges.At(x / 2, y) >> (x % 2 * 4)) & 0xFu));
-    }
-    return layer;
-  }
-
-  PassLayer CandidatesLayer(Strategy strategy, int width, int height) const {
-    PassLayer layer{"candidates", {"Y"}, width, height, {}, {}, 0};
-    for (const std::uint8_t joined : workSet_.Membership(strategy)) layer.values.push_back(joined);
-    return layer;
-  }
-
   Config config_;
   WorkSet workSet_;
   sim::Buffer<std::uint32_t> control_;
@@ -242,7 +232,7 @@ class Cmaa2Pass final : public Pass {
   std::optional<Working> working_;
 };
 
-PassOutput Cmaa2Pass::Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) {
+Stage::Targets Cmaa2Pass::Process(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) {
   const int width = frame.Width(), height = frame.Height();
   sim::Texture2D<glm::vec4>& colour = FrameTexture(colour_, "cmaa2/colour", width, height, sim::Format::RGBA8Srgb);
   StoreSrgb8(*frame.colour, colour);
@@ -252,14 +242,40 @@ PassOutput Cmaa2Pass::Run(sim::Machine& machine, const FrameInputs& frame, Strat
   }
   auto makeDetect = [&](sim::Dispatch& d, auto form) { return MakeDetect(d, form, colour, edges); };
   auto makeConsume = [&](sim::Dispatch& d) { return MakeProcessCandidates(d, colour, edges); };
-  PassOutput output;
-  output.SetWorkSet(workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeConsume));
+  const WorkSetShape workSet = workSet_.Run(machine, strategy, kKernels, width, height, makeDetect, makeConsume);
   WriteApplyArguments(machine);
   Apply(machine, colour);
-  output.colour = DecodedSrgb8("cmaa2/output", colour);
-  output.layers.push_back(EdgesLayer(edges, width, height));
-  output.layers.push_back(CandidatesLayer(strategy, width, height));
+  return {colour, edges, workSet};
+}
+
+PassOutput Cmaa2Pass::Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) {
+  const Targets targets = Process(machine, frame, strategy);
+  PassOutput output;
+  output.SetWorkSet(targets.workSet);
+  output.colour = DecodedSrgb8("cmaa2/output", targets.colour);
+  output.layers.push_back(EdgesLayer());
+  output.layers.push_back(CandidatesLayer(strategy));
   return output;
+}
+
+PassLayer Cmaa2Pass::EdgesLayer() const {
+  const sim::Texture2D<std::uint32_t>& edges = *edges_;
+  const int width = colour_->Width(), height = colour_->Height();
+  const auto row = static_cast<std::size_t>(width), texelsPerRow = static_cast<std::size_t>(edges.Width());
+  PassLayer layer{"edges", {"Y"}, width, height, std::vector<float>(row * static_cast<std::size_t>(height)), {}, 0};
+  const std::span<const std::uint32_t> texels = edges.Texels();
+  ByRows(width, height, [&](std::size_t i) {
+    const std::size_t x = i % row;
+    layer.values[i] = static_cast<float>((texels[i / row * texelsPerRow + x / 2] >> (x % 2 * 4)) & 0xFu);
+  });
+  return layer;
+}
+
+PassLayer Cmaa2Pass::CandidatesLayer(Strategy strategy) const {
+  const std::vector<std::uint8_t> joined = workSet_.Membership(strategy);
+  PassLayer layer{"candidates", {"Y"}, colour_->Width(), colour_->Height(), std::vector<float>(joined.size()), {}, 0};
+  ByRows(layer.width, layer.height, [&](std::size_t i) { layer.values[i] = joined[i]; });
+  return layer;
 }
 
 std::vector<SettingInfo> Settings() {
@@ -314,5 +330,6 @@ const PassInfo& Info() {
 }
 
 std::unique_ptr<Pass> Make(const PassSettings& settings) { return std::make_unique<Cmaa2Pass>(ConfigOf(settings)); }
+std::unique_ptr<Stage> MakeStage(const PassSettings& settings) { return std::make_unique<Cmaa2Pass>(ConfigOf(settings)); }
 
 }  // namespace passes::cmaa2

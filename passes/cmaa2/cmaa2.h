@@ -39,6 +39,7 @@
 // items and locations sized by the `reference_buffers` setting (docs/cmaa2.md "Queue sizing").
 // Layers: "edges" (the 4-bit value per pixel) and "candidates" (1 = a candidate).
 
+#include <cstdint>
 #include <memory>
 
 #include "passes/pass.h"
@@ -47,5 +48,23 @@ namespace passes::cmaa2 {
 
 const PassInfo& Info();
 std::unique_ptr<Pass> Make(const PassSettings& settings);
+
+// CMAA2 as the first stage of another pass (TSCMAA): the same dispatches, with the targets left
+// for the caller's kernels to bind, as a renderer's next pass binds them.
+class Stage {
+ public:
+  virtual ~Stage() = default;
+  struct Targets {
+    const sim::Texture2D<glm::vec4>& colour;      // RGBA8_SRGB, the frame after the deferred apply
+    const sim::Texture2D<std::uint32_t>& edges;   // R8_UINT, (W+1)/2 x H: LoadEdge reads a pixel's bits
+    WorkSetShape workSet;                         // the candidates
+  };
+  // The diagram above on one frame. The targets live until the next call.
+  virtual Targets Process(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) = 0;
+  // The last frame's layers "edges" and "candidates" (of the strategy it ran).
+  virtual PassLayer EdgesLayer() const = 0;
+  virtual PassLayer CandidatesLayer(Strategy strategy) const = 0;
+};
+std::unique_ptr<Stage> MakeStage(const PassSettings& settings);
 
 }  // namespace passes::cmaa2

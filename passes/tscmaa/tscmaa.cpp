@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,21 +20,17 @@
 namespace passes::tscmaa {
 namespace {
 
-constexpr std::string_view kCopyDispatch = "tscmaa/copy-history";
 constexpr std::string_view kDetectDispatch = "tscmaa/taa-candidates";
 constexpr std::string_view kTaaDispatch = "tscmaa/taa";
-
-const sim::KernelInfo kCopyKernel{
-    .vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 8,
-    .source = "hand count: thread id to texel address, one load and one store of a 32-bit texel"};
 
 constexpr WorkSetKernels kKernels{
     .detectDispatch = kDetectDispatch,
     .consumeDispatch = kTaaDispatch,
-    .detectPixel = {.vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 30,
-                    .source = "hand count: the edges load and nibble, the four corner tests (~8), the position hash "
-                              "(6 ALU) and threshold compare, the stencil export"},
-    .detectCompute = {.vgprs = 12, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 34,
+    .detectPixel = {.vgprs = 8, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 34,
+                    .source = "hand count: the colour copy's load and store (~4), the edges load and nibble, the "
+                              "four corner tests (~8), the position hash (6 ALU) and threshold compare, the stencil "
+                              "export"},
+    .detectCompute = {.vgprs = 12, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 38,
                       .source = "hand count: as the pixel form, plus bounds compare, pack x | y << 16 and the append "
                                 "address"},
     .consume = {.vgprs = 48, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 190,
@@ -61,18 +56,11 @@ Config ConfigOf(const PassSettings& settings) {
           .gamma = static_cast<float>(settings.Get("variance_gamma"))};
 }
 
-std::unique_ptr<Pass> MakeCmaa2(const Config& config) {
+std::unique_ptr<cmaa2::Stage> MakeCmaa2(const Config& config) {
   PassSettings settings(cmaa2::Info().name, cmaa2::Info().settings);
   settings.Set("threshold", config.threshold);
   settings.Set("local_contrast_adaptation", config.localContrastAdaptation);
-  return cmaa2::Make(settings);
-}
-
-const PassLayer& LayerNamed(const PassOutput& output, std::string_view name) {
-  for (const PassLayer& layer : output.layers) {
-    if (layer.name == name) return layer;
-  }
-  throw std::logic_error("cmaa2 returned no layer " + std::string(name));
+  return cmaa2::MakeStage(settings);
 }
 
 // The TAA on one candidate (the diagram's tscmaa/taa).
@@ -127,55 +115,19 @@ class TscmaaPass final : public Pass {
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override;
 
  private:
-  void CopyHistory(sim::Machine& machine, const sim::Texture2D<glm::vec4>& from, sim::Texture2D<glm::vec4>& to) const;
-  // CMAA2's output codes and edge bits in this pass's targets (host side, see the diagram).
-  std::pair<const sim::Texture2D<glm::vec4>&, const sim::Texture2D<std::uint32_t>&> StoreCmaaOutputs(
-      const PassOutput& cmaa, int width, int height);
-
   Config config_;
-  std::unique_ptr<Pass> cmaa2_;
+  std::unique_ptr<cmaa2::Stage> cmaa2_;
   WorkSet workSet_;
-  std::optional<sim::Texture2D<glm::vec4>> cmaaColour_;
-  std::optional<sim::Texture2D<std::uint32_t>> cmaaEdges_;
   std::array<std::optional<sim::Texture2D<glm::vec4>>, 2> history_;
   int current_ = 0;          // the history target this frame writes
   bool hasHistory_ = false;  // the other target holds the previous frame's output
 };
 
-void TscmaaPass::CopyHistory(sim::Machine& machine, const sim::Texture2D<glm::vec4>& from,
-                             sim::Texture2D<glm::vec4>& to) const {
-  sim::Dispatch d(std::string(kCopyDispatch), kCopyKernel);
-  const sim::TextureView<glm::vec4> in = d.Read(from).As(sim::Format::RGBA8Unorm);
-  const sim::RwTextureView<glm::vec4> out = d.ReadWrite(to).As(sim::Format::RGBA8Unorm);
-  const int width = from.Width(), height = from.Height();
-  d.SetPixelGrid(width, height);
-  machine.Compute(d, {.threads = {width, height, 1}, .groupSize = {kWorkSetTileSide, kWorkSetTileSide, 1}},
-                  [=](sim::ComputeLane& lane) {
-                    const int x = lane.threadId.x, y = lane.threadId.y;
-                    if (x >= width || y >= height) return;
-                    out.Store(lane, x, y, in.Load(lane, x, y));
-                  });
-}
-
-std::pair<const sim::Texture2D<glm::vec4>&, const sim::Texture2D<std::uint32_t>&> TscmaaPass::StoreCmaaOutputs(
-    const PassOutput& cmaa, int width, int height) {
-  sim::Texture2D<glm::vec4>& colour = FrameTexture(cmaaColour_, "tscmaa/cmaa-colour", width, height, sim::Format::RGBA8Srgb);
-  StoreSrgb8(cmaa.colour, colour);
-  sim::Texture2D<std::uint32_t>& edges = FrameTexture(cmaaEdges_, "tscmaa/cmaa-edges", width, height, 1);
-  const std::vector<float> bits = LayerNamed(cmaa, "edges").Floats();
-  for (std::size_t i = 0; i < bits.size(); ++i) edges.Texels()[i] = static_cast<std::uint32_t>(bits[i]);
-  return {colour, edges};
-}
-
 PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) {
   const int width = frame.Width(), height = frame.Height();
-  PassOutput cmaa = cmaa2_->Run(machine, frame, strategy);
-
-  // Named references rather than a structured binding: a lambda may capture them (C++20 lets it
-  // capture a binding, clang 14 does not yet).
-  const auto outputs = StoreCmaaOutputs(cmaa, width, height);
-  const sim::Texture2D<glm::vec4>& colour = outputs.first;
-  const sim::Texture2D<std::uint32_t>& edges = outputs.second;
+  const cmaa2::Stage::Targets cmaa = cmaa2_->Process(machine, frame, strategy);
+  const sim::Texture2D<glm::vec4>& colour = cmaa.colour;
+  const sim::Texture2D<std::uint32_t>& edges = cmaa.edges;
 
   const int previous = 1 - current_;
   const bool resized = !history_[previous] || history_[previous]->Width() != width || history_[previous]->Height() != height;
@@ -184,13 +136,16 @@ PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
       FrameTexture(history_[previous], "tscmaa/history-" + std::to_string(previous), width, height, sim::Format::RGBA8Srgb);
   sim::Texture2D<glm::vec4>& write =
       FrameTexture(history_[current_], "tscmaa/history-" + std::to_string(current_), width, height, sim::Format::RGBA8Srgb);
-  CopyHistory(machine, colour, write);
-
   const double fraction = config_.taaFraction;
+  // Every pixel copies CMAA2's codes into the new history (UNORM views, bit for bit), so the
+  // pixels the TAA does not run on keep CMAA2's; then the candidate test.
   auto makeDetect = [&](sim::Dispatch& d, auto) {
+    const sim::TextureView<glm::vec4> cmaaCodes = d.Read(colour).As(sim::Format::RGBA8Unorm);
+    const sim::RwTextureView<glm::vec4> historyCodes = d.ReadWrite(write).As(sim::Format::RGBA8Unorm);
     const sim::TextureView<std::uint32_t> edgeView = d.Read(edges);
     return [=](const auto& lane, int x, int y) {
-      return cmaa2::IsCandidate(edgeView.Load(lane, x, y)) && ChosenForTaa(x, y, fraction);
+      historyCodes.Store(lane, x, y, cmaaCodes.Load(lane, x, y));
+      return cmaa2::IsCandidate(cmaa2::LoadEdge(lane, edgeView, x, y)) && ChosenForTaa(x, y, fraction);
     };
   };
   auto makeTaa = [&](sim::Dispatch& d) {
@@ -212,10 +167,11 @@ PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
   current_ = previous;
 
   output.colour = DecodedSrgb8("tscmaa/output", write);
-  output.layers.push_back(LayerNamed(cmaa, "edges"));
-  output.layers.push_back(LayerNamed(cmaa, "candidates"));
-  PassLayer taa{"taa-candidates", {"Y"}, width, height, {}, {}, 0};
-  for (const std::uint8_t joined : workSet_.Membership(strategy)) taa.values.push_back(joined);
+  output.layers.push_back(cmaa2_->EdgesLayer());
+  output.layers.push_back(cmaa2_->CandidatesLayer(strategy));
+  const std::vector<std::uint8_t> joined = workSet_.Membership(strategy);
+  PassLayer taa{"taa-candidates", {"Y"}, width, height, std::vector<float>(joined.size()), {}, 0};
+  ByRows(width, height, [&](std::size_t i) { taa.values[i] = joined[i]; });
   output.layers.push_back(std::move(taa));
   return output;
 }
@@ -252,10 +208,9 @@ const PassInfo& Info() {
       .inputs = {FrameInput::Colour, FrameInput::Velocity},
       .studiedDispatches = {kTaaDispatch},
       .strategies = {Strategy::StencilCulled, Strategy::DeferredQueue},
-      // CMAA2's own, its colour and edges stored here (vec4, u32), two histories and the output
-      // (vec4 each), the stencil byte, the queue entry and the membership byte.
-      .bytesPerPixel = cmaa2::Info().bytesPerPixel + 4 * sizeof(glm::vec4) + sizeof(std::uint32_t) + 1 +
-                       sizeof(std::uint32_t) + 1,
+      // CMAA2's own (its decoded output included, which this pass does not make), two histories
+      // and the output (vec4 each), the stencil byte, the queue entry and the membership byte.
+      .bytesPerPixel = cmaa2::Info().bytesPerPixel + 3 * sizeof(glm::vec4) + 1 + sizeof(std::uint32_t) + 1,
       .layerBytesPerPixel = 3 * sizeof(float),  // edges, candidates, taa-candidates
       .temporal = true,
       .jitter = "none",

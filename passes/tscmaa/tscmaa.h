@@ -8,15 +8,13 @@
 //   cmaa2/*                    CMAA2 v2.3 as the cmaa2 pass runs it (passes/cmaa2/cmaa2.h), under
 //                              the same strategy, with threshold 1/22 and local contrast
 //                              adaptation 0.5 (seed 003 SetEdgeThresholds defaults, CMAA2's
-//                              "tscmaa" preset): its output colour (RGBA8_SRGB) and edges
-//   (host) tscmaa/cmaa-colour  CMAA2's output codes, RGBA8_SRGB (W x H), and tscmaa/cmaa-edges,
-//                              CMAA2's 4 edge bits per pixel (R8_UINT, W x H): CMAA2 keeps its
-//                              targets private, so its outputs are stored here host side (the
-//                              same codes and bits) for the TAA kernels to read
-//   tscmaa/copy-history        compute 8x8, every pixel: CMAA2's codes -> the new history
-//                              (UNORM views, bit for bit): non-candidates keep CMAA2's pixel
-//   tscmaa/taa-candidates      (detect) per pixel: CMAA2's candidate test on its edges (two edges
-//                              meeting at a corner), and the pixel among the chosen fraction
+//                              "tscmaa" preset): its targets cmaa2/colour (RGBA8_SRGB, after the
+//                              deferred apply) and cmaa2/edges (R8_UINT, two pixels per texel),
+//                              which the kernels below bind directly (cmaa2::Stage)
+//   tscmaa/taa-candidates      (detect) per pixel: CMAA2's codes -> the new history (UNORM
+//                              views, bit for bit: non-candidates keep CMAA2's pixel), then
+//                              CMAA2's candidate test on its edges (two edges meeting at a
+//                              corner), and the pixel among the chosen fraction
 //                              (`taa_fraction`, default 0.5: a fixed 32-bit hash of (x, y) below
 //                              fraction x 2^32; seed 003 "50 percent of CMAA edge candidates")
 //                              stencil: full-screen PS; queue: compute 8x8, append
