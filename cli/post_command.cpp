@@ -38,9 +38,11 @@ struct PostInputs {
   InputImage image;
   std::optional<DepthImage> depth;
   std::optional<VelocityImage> velocity;
+  std::optional<sim::Texture2D<glm::vec4>> colourSrgb8;  // the image as the 8-bit passes read it
 
   passes::FrameInputs Frame() const {
     return {.colour = &image.colour,
+            .colourSrgb8 = &*colourSrgb8,
             .depth = depth ? &depth->depth : nullptr,
             .velocity = velocity ? &velocity->velocity : nullptr};
   }
@@ -69,8 +71,9 @@ std::string FileAt(const std::vector<std::string>& files, std::size_t frame) {
 PostInputs ReadFrameInputs(const PostCommandOptions& options, std::size_t frame) {
   PostInputs inputs{options.inputs[frame], FileAt(options.depths, frame), FileAt(options.velocities, frame),
                     ReadInputImage(options.inputs[frame], MemoryCheck(options, options.inputs[frame])), std::nullopt,
-                    std::nullopt};
+                    std::nullopt, std::nullopt};
   const int width = inputs.image.colour.Width(), height = inputs.image.colour.Height();
+  inputs.colourSrgb8 = passes::Srgb8ColourTarget("colour-srgb8", inputs.image.colour);
   if (!inputs.depthFile.empty()) inputs.depth = ReadDepthExr(inputs.depthFile, width, height, inputs.input);
   if (!inputs.velocityFile.empty()) inputs.velocity = ReadVelocityExr(inputs.velocityFile, width, height, inputs.input);
   return inputs;

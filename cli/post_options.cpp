@@ -191,7 +191,7 @@ void CheckPostInputs(const passes::PassInfo& info, bool haveDepth, bool haveVelo
 std::uint64_t EstimatePostBytes(int width, int height, const passes::PassInfo& info, std::size_t strategies,
                                 bool depth, bool velocity) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
-  const std::uint64_t image = 2 * sizeof(glm::vec4);
+  const std::uint64_t image = 2 * sizeof(glm::vec4) + 4;  // decoded twice, and its 8-bit sRGB store
   const std::uint64_t depthBytes = (depth ? 2 * sizeof(float) : 0) + (velocity ? 2 * sizeof(glm::vec2) : 0);
   const std::uint64_t writers = sizeof(glm::vec4) + 4;  // output.exr's planes, output.png's bytes
   return pixels * (image + depthBytes + strategies * info.bytesPerPixel + writers);

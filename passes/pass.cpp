@@ -3,6 +3,7 @@
 #include "passes/pass.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "sim/check.h"
 #include "sim/formats.h"
@@ -27,6 +28,7 @@ glm::vec2 PatternJitter(const raster::SamplePattern& pattern) {
 
 FrameInputs FrameInputsOf(const sim::FramePipeline& frame) {
   return {.colour = &frame.Colour(),
+          .colourSrgb8 = &frame.ColourSrgb8(),
           .depth = &frame.Depth(),
           .normal = &frame.Normal(),
           .objectId = &frame.ObjectId(),
@@ -61,15 +63,23 @@ std::vector<float> PassLayer::Floats() const {
 
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear) {
   sim::Texture2D<glm::vec4> target(std::move(name), linear.Width(), linear.Height(), sim::Format::RGBA8Srgb);
-  StoreSrgb8(linear, target);
+  sim::StoreSrgb8(linear, target);
   return target;
 }
 
-void StoreSrgb8(const sim::Texture2D<glm::vec4>& linear, sim::Texture2D<glm::vec4>& target) {
-  const std::span<const glm::vec4> in = linear.Texels();
-  std::uint8_t* const codes = target.Codes().data();
-  ByRows(linear.Width(), linear.Height(),
-         [&](std::size_t i) { sim::EncodeCodes(sim::Format::RGBA8Srgb, in[i], codes + 4 * i, 4); });
+const sim::Texture2D<glm::vec4>& FrameInputs::ColourSrgb8() const {
+  if (colourSrgb8 == nullptr) throw std::logic_error("frame inputs without colourSrgb8: this pass reads the 8-bit frame");
+  if (colourSrgb8->Width() != Width() || colourSrgb8->Height() != Height() ||
+      colourSrgb8->TexelFormat() != sim::Format::RGBA8Srgb) {
+    throw std::logic_error("frame inputs: colourSrgb8 is not an RGBA8 sRGB texture of the colour's size");
+  }
+  return *colourSrgb8;
+}
+
+void CopySrgb8Frame(const FrameInputs& frame, sim::Texture2D<glm::vec4>& target) {
+  const std::span<const std::uint8_t> codes = frame.ColourSrgb8().Codes();
+  AASIM_CHECK(target.TexelFormat() == sim::Format::RGBA8Srgb && target.Codes().size() == codes.size());
+  std::ranges::copy(codes, target.Codes().begin());
 }
 
 sim::Texture2D<glm::vec4> DecodedSrgb8(std::string name, const sim::Texture2D<glm::vec4>& target) {

@@ -38,6 +38,11 @@ std::optional<Strategy> StrategyByName(std::string_view name);
 // in PassInfo::inputs and the study supplies it.
 struct FrameInputs {
   const sim::Texture2D<glm::vec4>* colour = nullptr;  // resolved, linear RGBA
+  // The same frame as the renderer's RGBA8 sRGB render target holds it (sim::StoreSrgb8), stored
+  // once per frame: passes with an 8-bit colour input bind it, or copy it where they write their
+  // colour in place, so their views read the codes (UNORM, gamma values) or decode them (sRGB,
+  // linear) as the reference shaders do (aa-facts §1.9). ColourSrgb8() checks it is there.
+  const sim::Texture2D<glm::vec4>* colourSrgb8 = nullptr;
   const sim::Texture2D<float>* depth = nullptr;
   const sim::Texture2D<glm::vec4>* normal = nullptr;
   const sim::Texture2D<std::uint32_t>* objectId = nullptr;
@@ -55,6 +60,7 @@ struct FrameInputs {
 
   int Width() const { return colour->Width(); }
   int Height() const { return colour->Height(); }
+  const sim::Texture2D<glm::vec4>& ColourSrgb8() const;
 };
 
 // Whether a resource is history a temporal pass carries from frame to frame: the last component of
@@ -122,12 +128,12 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& te
           std::vector<float>(first, first + texels.size() * N), {}, 0};
 }
 
-// The frame's colour as passes with an 8-bit colour target read it: stored into an RGBA8 sRGB
-// texture (the renderer's store, host side, not a pass dispatch), so its views read the codes
-// (UNORM, gamma values) or decode them (sRGB, linear) as the reference shaders do (aa-facts §1.9).
+// A linear colour stored into a new RGBA8 sRGB texture (sim::StoreSrgb8): FrameInputs::colourSrgb8
+// for a frame that did not come from a sim::FramePipeline.
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear);
-// The same into an RGBA8 sRGB texture of the frame's size a pass keeps across frames.
-void StoreSrgb8(const sim::Texture2D<glm::vec4>& linear, sim::Texture2D<glm::vec4>& target);
+// The frame's 8-bit codes into a target of the pass's own that it then writes in place (CMAA2's
+// deferred apply, FXAA's luma in alpha), as a renderer's CopyResource would.
+void CopySrgb8Frame(const FrameInputs& frame, sim::Texture2D<glm::vec4>& target);
 // Per-texel host work on a whole frame (conversions, copies), by rows on the worker threads:
 // convert(texel index) does one texel and touches no other, so the result does not depend on the
 // thread count.

@@ -90,6 +90,7 @@ FramePipeline::FramePipeline(Machine& machine, FrameSettings settings)
       eqaa_(settings_.width, settings_.height, settings_.eqaa, settings_.policy, fmask::InitialState::Cleared,
             settings_.clearColour),
       colour_("colour", settings_.width, settings_.height, 4),
+      colourSrgb8_("colour-srgb8", settings_.width, settings_.height, Format::RGBA8Srgb),
       depthTarget_("depth", settings_.width, settings_.height, 4),
       normal_("normal", settings_.width, settings_.height, 4),  // modelled as RGB10A2
       objectId_("object-id", settings_.width, settings_.height, 4),
@@ -255,6 +256,9 @@ DispatchReport FramePipeline::Render(const FrameGeometry& submitted, const Frame
   return report;
 }
 
-void FramePipeline::Resolve() { RunBoxResolve(machine_, eqaa_, colour_, "frame/resolve"); }
+void FramePipeline::Resolve() {
+  RunBoxResolve(machine_, eqaa_, colour_, "frame/resolve");
+  StoreSrgb8(colour_, colourSrgb8_);
+}
 
 }  // namespace sim

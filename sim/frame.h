@@ -125,6 +125,9 @@ class FramePipeline {
   raster::DepthStencilSurface& DepthSurface() { return depth_; }
   // Box-resolved colour (hw-facts §1.6), linear RGBA, modelled as RGBA8.
   const Texture2D<glm::vec4>& Colour() const { return colour_; }
+  // The same frame as the renderer's RGBA8 sRGB render target holds it (StoreSrgb8 after the
+  // resolve): the input of every pass with an 8-bit colour target, stored once per frame.
+  const Texture2D<glm::vec4>& ColourSrgb8() const { return colourSrgb8_; }
   const Texture2D<float>& Depth() const { return depthTarget_; }
   const Texture2D<glm::vec4>& Normal() const { return normal_; }  // xyz world normal, w = 1 if written
   const Texture2D<std::uint32_t>& ObjectId() const { return objectId_; }
@@ -145,6 +148,7 @@ class FramePipeline {
   raster::DepthStencilSurface depth_;
   fmask::EqaaSurface eqaa_;
   Texture2D<glm::vec4> colour_;
+  Texture2D<glm::vec4> colourSrgb8_;
   Texture2D<float> depthTarget_;
   Texture2D<glm::vec4> normal_;
   Texture2D<std::uint32_t> objectId_;

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "sim/heat_map.h"
+#include "sim/parallel.h"
 #include "sim/views.h"
 
 namespace sim {
@@ -57,6 +58,17 @@ float TileHeatMap::Utilization(int tx, int ty) const {
   const std::uint32_t launched = Launched(tx, ty);
   if (launched == 0) return -1.0f;
   return static_cast<float>(Active(tx, ty)) / static_cast<float>(launched);
+}
+
+void StoreSrgb8(const Texture2D<glm::vec4>& linear, Texture2D<glm::vec4>& target) {
+  AASIM_CHECK(target.TexelFormat() == Format::RGBA8Srgb);
+  AASIM_CHECK(linear.Width() == target.Width() && linear.Height() == target.Height());
+  const std::span<const glm::vec4> in = linear.Texels();
+  std::uint8_t* const codes = target.Codes().data();
+  const auto row = static_cast<std::size_t>(linear.Width());
+  ParallelFor(static_cast<std::size_t>(linear.Height()), [&](std::size_t y) {
+    for (std::size_t i = y * row; i < (y + 1) * row; ++i) EncodeCodes(Format::RGBA8Srgb, in[i], codes + 4 * i, 4);
+  });
 }
 
 }  // namespace sim

@@ -262,4 +262,9 @@ class AppendBuffer {
   Buffer<std::uint32_t> counter_;
 };
 
+// The renderer's store of a linear frame into an RGBA8 sRGB render target (D3D11 §3.2.3.8, sRGB
+// on RGB, alpha linear): what passes with an 8-bit colour input read. Host side, by rows on the
+// worker threads (the result does not depend on the thread count); not a dispatch, so uncounted.
+void StoreSrgb8(const Texture2D<glm::vec4>& linear, Texture2D<glm::vec4>& target);
+
 }  // namespace sim

@@ -219,10 +219,10 @@ class SequenceStudy {
     group.result.groundTruthFlicker.push_back(
         reprojection ? CompensatedDifference(TruthShownAt(frame), TruthShownAt(frame - 1), *reprojection) : kNaN);
     const FrameContext context{frame, label, truth, reprojection ? &*reprojection : nullptr, group.ages};
-    // The drawn frame as the 8-bit sRGB target the passes read holds it (passes::Srgb8ColourTarget),
+    // The drawn frame as the 8-bit sRGB target the passes read holds it (FrameInputs::colourSrgb8),
     // so it is scored with the quantisation the passes start from.
     Record(group.result, group.result.tracks.front(), group.tracks.front(),
-           passes::DecodedSrgb8("frame sRGB8", passes::Srgb8ColourTarget("frame sRGB8", *inputs.colour)), context);
+           passes::DecodedSrgb8("frame sRGB8", inputs.ColourSrgb8()), context);
     for (std::size_t t = 1; t < group.tracks.size(); ++t) {
       RunTrack(group.result, group.result.tracks[t], group.tracks[t], inputs, context);
     }

@@ -206,7 +206,7 @@ class StudyRunner {
     StudyFrame frame = DrawFrame(mode, label, "frames/" + ModeSlug(eqaa), pipeline);
     if (FeedsAPass(mode)) {
       ScoredImage srgb8{label + " sRGB8", frame.image.folder + "/srgb8",
-                        passes::DecodedSrgb8("frame sRGB8", passes::Srgb8ColourTarget("frame sRGB8", pipeline.Colour())), {}};
+                        passes::DecodedSrgb8("frame sRGB8", pipeline.ColourSrgb8()), {}};
       srgb8.quality =
           Step(observer_, "metrics " + srgb8.label, [&] { return ScoreAgainstGroundTruth(srgb8.colour, study_.groundTruth); });
       frame.srgb8 = std::move(srgb8);

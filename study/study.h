@@ -54,7 +54,7 @@ struct StudyFrame {
   // Every resolve of ExperimentConfig::resolves that reads this mode, in registry order.
   std::vector<StudyResolve> resolves{};
   // Frames post passes read: the colour as an 8-bit sRGB target holds it (what the passes start
-  // from, passes::Srgb8ColourTarget), so a pass is compared with its own input's quantisation.
+  // from, sim::FramePipeline::ColourSrgb8), so a pass is compared with its own input's quantisation.
   std::optional<ScoredImage> srgb8{};
   fmask::FragmentCounters fragments{};
   UnknownSamples unknown{};      // at the end of the frame

@@ -159,8 +159,10 @@ TEST_P(EveryPass, AnInstanceReusedForASecondFrameGivesWhatAFreshOneGives) {
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) mirrored.At(x, y) = pipeline.Colour().At(kWidth - 1 - x, y);
   }
+  const sim::Texture2D<glm::vec4> mirroredSrgb8 = Srgb8ColourTarget("mirrored-srgb8", mirrored);
   FrameInputs second = FrameInputsOf(pipeline);
   second.colour = &mirrored;
+  second.colourSrgb8 = &mirroredSrgb8;
   for (const Strategy strategy : Info().strategies) {
     const std::unique_ptr<passes::Pass> reused = Pass().make(PassSettings(Info().name, Info().settings));
     reused->Run(machine, FrameInputsOf(pipeline), strategy);

@@ -151,7 +151,9 @@ struct Cmaa2Run {
 Cmaa2Run RunCmaa2(const sim::Texture2D<glm::vec4>& image, Strategy strategy = Strategy::DeferredQueue,
              std::string_view spec = "cmaa2") {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  Cmaa2Run run{ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image}, strategy), {}};
+  const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", image);
+  Cmaa2Run run{ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image, .colourSrgb8 = &srgb8}, strategy),
+               {}};
   run.reports = machine.Reports();
   return run;
 }

@@ -64,8 +64,10 @@ FilmicSequenceRun RunFilmicSequence(std::string_view spec, int frames, const std
     const FilmicFrame frame = make(k);
     // The t2x schedule's jitter (aa-facts §1.8, y down).
     const glm::vec2 jitter = k % 2 == 0 ? glm::vec2(0.25f) : glm::vec2(-0.25f);
+    const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", frame.colour);
     run.outputs.push_back(pass->Run(machine,
-                                    {.colour = &frame.colour, .depth = &frame.depth, .velocity = &frame.velocity,
+                                    {.colour = &frame.colour, .colourSrgb8 = &srgb8, .depth = &frame.depth,
+                                     .velocity = &frame.velocity,
                                      .frameIndex = k, .jitter = jitter, .frameSeconds = frameSeconds},
                                     strategy));
   }

@@ -83,7 +83,8 @@ using testing::GreyImage;
 
 PassOutput RunFilmicPass(std::string_view spec, const sim::Texture2D<glm::vec4>& image, Strategy strategy = Strategy::DeferredQueue) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  return ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image}, strategy);
+  const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", image);
+  return ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image, .colourSrgb8 = &srgb8}, strategy);
 }
 
 using testing::LayerNamed;

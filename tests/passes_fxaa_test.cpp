@@ -48,7 +48,8 @@ struct FxaaRun {
 FxaaRun RunFxaa(const sim::Texture2D<glm::vec4>& image, const PassSettings& settings,
                 Strategy strategy = Strategy::StencilCulled) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  FxaaRun run{fxaa::Make(settings)->Run(machine, FrameInputs{.colour = &image}, strategy), {}};
+  const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", image);
+  FxaaRun run{fxaa::Make(settings)->Run(machine, FrameInputs{.colour = &image, .colourSrgb8 = &srgb8}, strategy), {}};
   run.reports = machine.Reports();
   return run;
 }

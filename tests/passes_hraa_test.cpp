@@ -58,15 +58,18 @@ struct HraaFrame {
   sim::Texture2D<glm::vec2> velocity;
   const raster::SamplePattern* pattern;
   int index;
+  mutable std::optional<sim::Texture2D<glm::vec4>> srgb8;  // made by Inputs from the colour
 
   FrameInputs Inputs() const {
-    return {.colour = &colour, .velocity = &velocity, .pattern = pattern, .frameIndex = index};
+    srgb8 = Srgb8ColourTarget("colour-srgb8", colour);
+    return {.colour = &colour, .colourSrgb8 = &*srgb8, .velocity = &velocity, .pattern = pattern, .frameIndex = index};
   }
 };
 
 // Frame k: the scene at every pixel's flipquad-split sample (pixel centres when `centres`).
 HraaFrame RenderHraa(int width, int height, int k, const Scene& scene, const Motion& motion = {}, bool centres = false) {
-  HraaFrame frame{{"colour", width, height, 16}, {"velocity", width, height, 8}, centres ? nullptr : &FlipQuadSplit().At(k), k};
+  HraaFrame frame{{"colour", width, height, 16}, {"velocity", width, height, 8}, centres ? nullptr : &FlipQuadSplit().At(k), k,
+                  std::nullopt};
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const glm::vec2 at = centres ? glm::vec2(x + 0.5f, y + 0.5f) : SamplePosition(x, y, k);
@@ -104,7 +107,7 @@ TEST(PassesHraa, TfqResolveAveragesTheFourFlipQuadPointsOfTwoFrames) {
   const auto a = [](int x, int y) { return glm::vec3(0.05f + 0.05f * static_cast<float>((x * 7 + y * 3) % 17), 0.3f, 0.1f * static_cast<float>(y % 5)); };
   const auto b = [](int x, int y) { return glm::vec3(0.9f - 0.04f * static_cast<float>((x * 5 + y * 11) % 19), 0.6f, 0.08f * static_cast<float>(x % 7)); };
   const auto image = [&](int k) {
-    HraaFrame frame{{"colour", w, h, 16}, {"velocity", w, h, 8}, &FlipQuadSplit().At(k), k};
+    HraaFrame frame{{"colour", w, h, 16}, {"velocity", w, h, 8}, &FlipQuadSplit().At(k), k, std::nullopt};
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) frame.colour.At(x, y) = glm::vec4(k % 2 == 0 ? a(x, y) : b(x, y), 1.0f);
     }
@@ -354,7 +357,7 @@ TEST(PassesHraa, AcceptanceMetricWeighsTheHistoryByItsDistanceFromTheFreshWindow
     second.push_back(glm::clamp(first.back() + glm::vec3(static_cast<float>(rng.Uniform(-step, step))), 0.0f, 1.0f));
   }
   const auto frame = [&](int k, const std::vector<glm::vec3>& colours) {
-    HraaFrame f{{"colour", w, h, 16}, {"velocity", w, h, 8}, nullptr, k};
+    HraaFrame f{{"colour", w, h, 16}, {"velocity", w, h, 8}, nullptr, k, std::nullopt};
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) f.colour.At(x, y) = glm::vec4(colours[static_cast<std::size_t>(y * w + x)], 1.0f);
     }

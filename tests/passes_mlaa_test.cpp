@@ -43,7 +43,9 @@ struct MlaaRun {
 MlaaRun RunMlaa(std::string_view spec, const sim::Texture2D<glm::vec4>& image,
                 Strategy strategy = Strategy::DeferredQueue, const sim::Texture2D<float>* depth = nullptr) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
-  return {ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image, .depth = depth}, strategy)};
+  const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", image);
+  return {ResolvePass(spec).Make()->Run(machine, FrameInputs{.colour = &image, .colourSrgb8 = &srgb8, .depth = depth},
+                                        strategy)};
 }
 
 sim::Texture2D<float> DepthImage(int width, int height, const std::function<float(int, int)>& depth) {

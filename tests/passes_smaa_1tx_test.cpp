@@ -55,8 +55,10 @@ Smaa1txSequenceRun Run1txSequence(const std::vector<sim::Texture2D<glm::vec4>>& 
   sim::Texture2D<glm::vec2> still("velocity", frames.front().Width(), frames.front().Height());
   Smaa1txSequenceRun run;
   for (std::size_t k = 0; k < frames.size(); ++k) {
+    const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", frames[k]);
     run.outputs.push_back(pass->Run(
-        machine, {.colour = &frames[k], .velocity = &still, .frameIndex = static_cast<int>(k)}, strategy));
+        machine, {.colour = &frames[k], .colourSrgb8 = &srgb8, .velocity = &still, .frameIndex = static_cast<int>(k)},
+        strategy));
   }
   run.reports = machine.Reports();
   return run;

@@ -62,8 +62,10 @@ T2xSequenceRun RunT2xSequence(std::string_view spec, int frames, const FrameMake
   T2xSequenceRun run;
   for (int k = 0; k < frames; ++k) {
     const SyntheticFrame frame = make(k);
-    run.outputs.push_back(pass->Run(machine, {.colour = &frame.colour, .velocity = &frame.velocity, .frameIndex = k},
-                                    strategy));
+    const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", frame.colour);
+    run.outputs.push_back(pass->Run(
+        machine, {.colour = &frame.colour, .colourSrgb8 = &srgb8, .velocity = &frame.velocity, .frameIndex = k},
+        strategy));
   }
   run.reports = machine.Reports();
   return run;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -42,7 +43,9 @@ SmaaRun RunSmaa(std::string_view spec, const sim::Texture2D<glm::vec4>& image,
             Strategy strategy = Strategy::DeferredQueue, const sim::Texture2D<float>* depth = nullptr) {
   sim::Machine machine(sim::GpuConfigByName("ps4-class"));
   const PassConfig config = ResolvePass(spec);
-  SmaaRun run{config.Make()->Run(machine, FrameInputs{.colour = &image, .depth = depth}, strategy), {}};
+  const sim::Texture2D<glm::vec4> srgb8 = Srgb8ColourTarget("colour-srgb8", image);
+  SmaaRun run{config.Make()->Run(machine, FrameInputs{.colour = &image, .colourSrgb8 = &srgb8, .depth = depth}, strategy),
+              {}};
   run.reports = machine.Reports();
   return run;
 }
@@ -293,7 +296,19 @@ TEST(SmaaReport, TheBlendListsItsBindingsInDeclarationOrder) {
   ASSERT_NE(blend, run.reports.end());
   std::vector<std::string> names;
   for (const sim::ResourceTraffic& resource : blend->resources) names.push_back(resource.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"smaa/colour", "smaa/weights", "smaa/output"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"colour-srgb8", "smaa/weights", "smaa/output"}));
+}
+
+// A frame given without its 8-bit sRGB target is refused, not silently stored by the pass.
+TEST(SmaaInputs, TheEightBitFrameMustBeGiven) {
+  const auto image = GreyImage(16, 8, [](int x, int) { return x < 8 ? kSmaaDark : kSmaaBright; });
+  sim::Machine machine(sim::GpuConfigByName("ps4-class"));
+  EXPECT_THROW(ResolvePass("smaa").Make()->Run(machine, FrameInputs{.colour = &image}, Strategy::DeferredQueue),
+               std::logic_error);
+  const sim::Texture2D<glm::vec4> small = Srgb8ColourTarget("small", GreyImage(8, 8, [](int, int) { return kSmaaDark; }));
+  EXPECT_THROW(ResolvePass("smaa").Make()->Run(machine, FrameInputs{.colour = &image, .colourSrgb8 = &small},
+                                               Strategy::DeferredQueue),
+               std::logic_error);
 }
 
 // ---- Presets ----

@@ -37,8 +37,10 @@ struct TscmaaFrame {
   sim::Texture2D<glm::vec4> colour{"colour", kTscmaaSide, kTscmaaSide, 16};
   sim::Texture2D<glm::vec2> velocity{"velocity", kTscmaaSide, kTscmaaSide, 8};
   int index = 0;
+  mutable std::optional<sim::Texture2D<glm::vec4>> srgb8;  // made by Inputs from the colour
   FrameInputs Inputs() const {
-    return {.colour = &colour, .depth = nullptr, .normal = nullptr, .objectId = nullptr, .velocity = &velocity,
+    srgb8 = Srgb8ColourTarget("colour-srgb8", colour);
+    return {.colour = &colour, .colourSrgb8 = &*srgb8, .depth = nullptr, .normal = nullptr, .objectId = nullptr, .velocity = &velocity,
             .eqaa = nullptr, .pattern = nullptr, .frameIndex = index, .jitter = {}};
   }
 };

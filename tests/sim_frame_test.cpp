@@ -86,6 +86,32 @@ TEST(SimFrame, MaterialKernelShadesLambertAndWritesPixelTargets) {
   EXPECT_GT(report.fragments->pixelUpdates, 0u);
 }
 
+// The 8-bit frame the passes read is the resolved colour through D3D's sRGB store: RGB by the
+// double-precision curve (FloatToSrgb8ByCurve, not the tables the store uses), alpha UNORM.
+TEST(SimFrame, TheSrgb8FrameIsTheResolvedColourStoredThroughTheSrgbCurve) {
+  const int w = 48, h = 32;
+  Rect rect;
+  AddRect(rect, 4.3, 4.6, 40.2, 28.1, 0.25, glm::vec3(0.0f, 0.0f, 1.0f), 1, w, h);
+  const std::vector<glm::vec3> colours = {glm::vec3(1, 0, 0), glm::vec3(0.2f, 0.6f, 0.9f)};
+  Machine machine(GpuConfigByName("ps4-class"));
+  FramePipeline frame(machine, SmallSettings(w, h));
+  frame.Render({rect.clip, {}, rect.normals, rect.indices, rect.objects, colours});
+  ASSERT_EQ(frame.ColourSrgb8().TexelFormat(), Format::RGBA8Srgb);
+  const std::span<const std::uint8_t> codes = frame.ColourSrgb8().Codes();
+  const auto green = [&](int x, int y) { return codes[4 * (static_cast<std::size_t>(y) * w + x) + 1]; };
+  std::size_t between = 0;  // partly covered border pixels: green codes neither the clear's nor the inside's
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const glm::vec4 linear = frame.Colour().At(x, y);
+      const std::size_t at = 4 * (static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x));
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(codes[at + c], FloatToSrgb8ByCurve(linear[c])) << x << "," << y;
+      ASSERT_EQ(codes[at + 3], FloatToUnorm8(linear.a)) << x << "," << y;
+      if (green(x, y) != green(1, 1) && green(x, y) != green(20, 15)) ++between;
+    }
+  }
+  EXPECT_GT(between, 0u);
+}
+
 TEST(SimFrame, TexturedObjectsMultiplyTheFactorByABilinearSample) {
   const int w = 32, h = 32;
   Rect rect;

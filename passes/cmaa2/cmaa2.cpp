@@ -235,7 +235,7 @@ class Cmaa2Pass final : public Pass, public Stage {
 Stage::Targets Cmaa2Pass::Process(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) {
   const int width = frame.Width(), height = frame.Height();
   sim::Texture2D<glm::vec4>& colour = FrameTexture(colour_, "cmaa2/colour", width, height, sim::Format::RGBA8Srgb);
-  StoreSrgb8(*frame.colour, colour);
+  CopySrgb8Frame(frame, colour);
   sim::Texture2D<std::uint32_t>& edges = FrameTexture(edges_, "cmaa2/edges", (width + 1) / 2, height, 1);
   if (!working_ || working_->width != width || working_->height != height) {
     working_.emplace(width, height, Capacities::Of(width, height, config_.referenceBufferSizes));

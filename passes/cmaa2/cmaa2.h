@@ -3,8 +3,8 @@
 // aa-facts §4), 1x, LDR, on the pass framework. Defines followed: cmaa2_kernels.h; the readings
 // (thread mapping, determinism, overflow policy, the tscmaa preset) in docs/cmaa2.md.
 //
-//   frame colour ──store──► colour RGBA8_SRGB (W x H): read through its sRGB view (linear values,
-//                           the reference's UNORM_SRGB SRV) and written in place at the end
+//   frame colour-srgb8 ──copy──► colour RGBA8_SRGB (W x H): read through its sRGB view (linear
+//                           values, the reference's UNORM_SRGB SRV) and written in place at the end
 //
 //   cmaa2/edge-detection      (detect) per pixel: 3x3 lumas dot(sqrt(linear), Rec. 601), the four
 //     EdgesColor2x2CS         contrasts minus amount x the largest perpendicular contrast at their

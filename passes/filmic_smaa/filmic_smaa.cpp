@@ -20,9 +20,10 @@ class FilmicSmaaPass final : public Pass {
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
     const int width = frame.Width(), height = frame.Height();
-    const sim::Texture2D<glm::vec4> colour = Srgb8ColourTarget("filmic-smaa/colour", *frame.colour);
+    const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
     // The output target starts as the frame (a copy, as CopyResource would make).
-    sim::Texture2D<glm::vec4> blended = Srgb8ColourTarget("filmic-smaa/output", *frame.colour);
+    sim::Texture2D<glm::vec4> blended("filmic-smaa/output", width, height, sim::Format::RGBA8Srgb);
+    CopySrgb8Frame(frame, blended);
     sim::Texture2D<glm::vec2> edges("filmic-smaa/edges", width, height, sim::Format::RG8Unorm);
     PassOutput output;
     output.SetWorkSet(morphological_.Run(machine, strategy, colour, blended, edges));

@@ -3,7 +3,8 @@
 // aa-facts §2) on SMAA 1x's searches and tables (passes/smaa/), with its work set under both
 // dispatch strategies. The readings of the seed's unformulated ideas are in docs/filmic-smaa.md.
 //
-//   frame colour ──store──► colour RGBA8_SRGB (W x H), and a copy of it as the output target
+//   frame colour-srgb8 RGBA8_SRGB (W x H; FrameInputs::colourSrgb8), and a copy of it as the
+//                           output target
 //
 //   filmic-smaa/edge-detection  colour through a UNORM view (gamma luma), a 6x6 window per pixel
 //     (detect)                  (3 px left/up, 2 px right/down). Morphological edge suppression

@@ -83,9 +83,9 @@ class FilmicT2xPass final : public Pass {
     const int width = frame.Width(), height = frame.Height();
     Prepare(frame, width, height);
     sim::Texture2D<glm::vec4>& colour = *colour_;
-    StoreSrgb8(*frame.colour, colour);
+    CopySrgb8Frame(frame, colour);
     sim::Texture2D<glm::vec4>& morph = Ring(morph_, frames_);
-    StoreSrgb8(*frame.colour, morph);  // the target starts as the frame, as CopyResource would make it
+    CopySrgb8Frame(frame, morph);  // the target starts as the frame, as CopyResource would make it
     edges_->Fill(glm::vec2(0.0f));
     morphological_.SetSubsampleIndices(smaa::T2xSubsampleIndices(frame.frameIndex));
     WorkSetShape shape = morphological_.Run(machine, strategy, colour, morph, *edges_);

@@ -3,7 +3,7 @@
 // §2): temporal supersampling (SMAA T2x's two-frame resolve, improved) separated from temporal
 // filtering (an exponential history applied only on temporal edges, from a deferred queue).
 //
-//   frame colour ──store──► colour RGBA8_SRGB, and a copy as this frame's morph target
+//   frame colour-srgb8 ──copy──► colour RGBA8_SRGB, and a copy as this frame's morph target
 //   frame velocity ──store──► velocity[N] RG16F (UV units, smaa_temporal.h "Velocity")
 //
 //   filmic-smaa-t2x/{edge-detection,   Filmic SMAA's morphological part (filmic_smaa.h, both

@@ -73,9 +73,8 @@ class FxaaPass final : public Pass {
     const int width = frame.Width(), height = frame.Height();
     params_.width = width;
     params_.height = height;
-    // The frame's render targets, kept across frames as a renderer keeps them.
-    sim::Texture2D<glm::vec4>& colour = FrameTexture(colour_, "fxaa/colour", width, height, sim::Format::RGBA8Srgb);
-    StoreSrgb8(*frame.colour, colour);
+    // The pass's render targets, kept across frames as a renderer keeps them.
+    const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
     sim::Texture2D<glm::vec4>& rgbl = FrameTexture(rgbl_, "fxaa/rgbl", width, height, sim::Format::RGBA8Unorm);
     sim::Texture2D<glm::vec4>& target = FrameTexture(output_, "fxaa/output", width, height, sim::Format::RGBA8Unorm);
     spans_.assign(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);
@@ -147,7 +146,7 @@ class FxaaPass final : public Pass {
 
   Params params_;
   WorkSet workSet_{"fxaa"};
-  std::optional<sim::Texture2D<glm::vec4>> colour_, rgbl_, output_;
+  std::optional<sim::Texture2D<glm::vec4>> rgbl_, output_;
   std::vector<float> spans_;  // the consume's inspection record: direction, dstN, dstP, offset per pixel
 };
 

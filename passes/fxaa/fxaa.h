@@ -3,7 +3,7 @@
 // header's own integration (its "INTEGRATION - RGBL AND COLORSPACE" notes) and its work set, the
 // pixels past the early exit, under both dispatch strategies:
 //
-//   frame colour ──store──► colour RGBA8_SRGB (W x H; the frame's 8-bit sRGB target)
+//   frame colour-srgb8 RGBA8_SRGB (W x H; the frame's 8-bit sRGB target, FrameInputs::colourSrgb8)
 //
 //   fxaa/luma          full-screen PS: colour through a UNORM view (gamma codes) -> rgbl RGBA8
 //                      UNORM: rgb the codes unchanged, a = dot(rgb, (0.299, 0.587, 0.114))

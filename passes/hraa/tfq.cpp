@@ -141,7 +141,7 @@ void FrameRing::Store(const FrameInputs& frame) {
   for (std::size_t i = 0; i < velocity_.size(); ++i) {
     FrameTexture(velocity_[i], "tfq/history-velocity-" + std::to_string(i), width, height, sim::Format::RG16Float);
   }
-  StoreSrgb8(*frame.colour, *colour_[slot]);
+  CopySrgb8Frame(frame, *colour_[slot]);
   sim::Texture2D<glm::vec2>& velocity = *velocity_[velocitySlot];
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {

@@ -160,8 +160,7 @@ class MlaaPass final : public Pass {
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
     const int width = frame.Width(), height = frame.Height();
-    sim::Texture2D<glm::vec4>& colour = FrameTexture(colour_, "mlaa/colour", width, height, sim::Format::RGBA8Srgb);
-    StoreSrgb8(*frame.colour, colour);
+    const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
     sim::Texture2D<glm::vec4>& horizontal =
         FrameTexture(horizontal_, "mlaa/horizontal", width, height, sim::Format::RGBA8Srgb);
     sim::Texture2D<glm::vec4>& output = FrameTexture(output_, "mlaa/output", width, height, sim::Format::RGBA8Srgb);
@@ -269,7 +268,7 @@ class MlaaPass final : public Pass {
   const PassInfo& info_;
   Config config_;
   WorkSet horizontalSet_, verticalSet_;
-  std::optional<sim::Texture2D<glm::vec4>> colour_, horizontal_, output_, edgesH_, edgesV_;
+  std::optional<sim::Texture2D<glm::vec4>> horizontal_, output_, edgesH_, edgesV_;
   std::optional<sim::Texture2D<glm::vec2>> weightsH_, weightsV_;
 };
 

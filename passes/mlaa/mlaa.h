@@ -4,8 +4,8 @@
 // pass then a vertical pass over the colour, each an edge detect and a line blend on its own work
 // set (docs/mlaa.md has the talk's rules, quoted, and every choice the talk leaves open):
 //
-//   frame colour ──store──► colour RGBA8_SRGB (W x H; the 8-bit frame buffer, read and written
-//   [frame depth R32F] ──┐   through UNORM views: gamma codes, as the SPUs processed it)
+//   frame colour-srgb8 RGBA8_SRGB (W x H; the 8-bit frame buffer, FrameInputs::colourSrgb8, read
+//   [frame depth R32F] ──┐   through a UNORM view: gamma codes, as the SPUs processed it)
 //                        ▼ (predicated thresholding only)
 //   mlaa/h-edges   (detect) colour -> edges-h RGBA8 (R: edge to the pixel below, G: to the right,
 //                  B, A: their gradient class 0 / 0.5 / 1), every pixel written; copies the colour

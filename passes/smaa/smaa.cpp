@@ -47,10 +47,8 @@ class SmaaPass final : public Pass {
   const PassInfo& Info() const override { return info_; }
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
-    // The frame's render targets, kept across frames as a renderer keeps them.
-    sim::Texture2D<glm::vec4>& colour =
-        FrameTexture(colour_, "smaa/colour", frame.Width(), frame.Height(), sim::Format::RGBA8Srgb);
-    StoreSrgb8(*frame.colour, colour);
+    // The output target, kept across frames as a renderer keeps it.
+    const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
     sim::Texture2D<glm::vec4>& blended =
         FrameTexture(blended_, "smaa/output", frame.Width(), frame.Height(), sim::Format::RGBA8Srgb);
     PassOutput output;
@@ -65,7 +63,7 @@ class SmaaPass final : public Pass {
  private:
   const PassInfo& info_;
   Smaa1x smaa_;
-  std::optional<sim::Texture2D<glm::vec4>> colour_, blended_;
+  std::optional<sim::Texture2D<glm::vec4>> blended_;
 };
 
 }  // namespace

@@ -2,7 +2,7 @@
 // SMAA 1x, the reference implementation's three passes (iryoku/smaa SMAA.hlsl; aa-facts §1),
 // with its work set (the edge pixels) under both dispatch strategies:
 //
-//   frame colour ──store──► colour RGBA8_SRGB (W x H; the frame's 8-bit sRGB target)
+//   frame colour-srgb8 RGBA8_SRGB (W x H; the frame's 8-bit sRGB target, FrameInputs::colourSrgb8)
 //   [frame depth R32F] ─────────────────────────────────────┐ (depth edges, or predication)
 //                                                           ▼
 //   smaa/edge-detection      colour through a UNORM view (gamma values), point samples; depth

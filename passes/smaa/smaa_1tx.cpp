@@ -50,8 +50,7 @@ class OneTxPass final : public Pass {
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
     const int width = frame.Width(), height = frame.Height();
-    sim::Texture2D<glm::vec4>& colour = FrameTexture(colour_, "smaa-1tx/colour", width, height, sim::Format::RGBA8Srgb);
-    StoreSrgb8(*frame.colour, colour);
+    const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
     sim::Texture2D<glm::vec4>& smaaOutput = FrameTexture(smaaOutput_, "smaa-1tx/smaa", width, height, sim::Format::RGBA8Srgb);
     const Smaa1x::Frame result = smaa_.Run(machine, strategy, colour, nullptr, smaaOutput, Blend::Replace);
     const sim::Texture2D<glm::vec2>& velocity = StoreUvVelocity(frame, velocity_, "smaa-1tx/velocity", width, height);
@@ -102,7 +101,7 @@ class OneTxPass final : public Pass {
 
   Smaa1x smaa_;
   float lowFrames_, highFrames_;
-  std::optional<sim::Texture2D<glm::vec4>> colour_, smaaOutput_;
+  std::optional<sim::Texture2D<glm::vec4>> smaaOutput_;
   std::optional<sim::Texture2D<glm::vec2>> velocity_;
   std::array<std::optional<sim::Texture2D<glm::vec4>>, 2> history_;
   std::size_t current_ = 0;

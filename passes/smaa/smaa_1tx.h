@@ -4,7 +4,7 @@
 // contrast is high (keeps texture detail stable in motion), a clamp of the reprojected history to
 // the four diagonal neighbours' range.
 //
-//   frame colour ──store──► colour RGBA8_SRGB (W x H)
+//   frame colour-srgb8 RGBA8_SRGB (W x H; FrameInputs::colourSrgb8)
 //   frame velocity ──store──► velocity RG16F (W x H, UV units; smaa_temporal.h "Velocity")
 //   smaa-1tx/{edge-detection,        SMAA 1x (smaa.h's diagram; subsample indices 0; both
 //     blending-weights,              strategies through the work set)

@@ -4,7 +4,7 @@
 // subsample indices, written into one of two RGBA8 sRGB targets kept by the instance, then the
 // temporal resolve of this frame's target with the previous frame's.
 //
-//   frame colour ──store──► colour RGBA8_SRGB (T2x)    frame EQAA surface (4x, 2 samples)
+//   frame colour-srgb8 RGBA8_SRGB (T2x)               frame EQAA surface (4x, 2 samples)
 //   frame velocity ──store──► velocity RG16F (W x H, UV units, reprojection only; see below)
 //
 //   smaa-t2x/{edge-detection,       SMAA 1x (smaa.h's diagram, both strategies through the work

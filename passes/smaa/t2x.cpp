@@ -127,8 +127,7 @@ class T2xPass final : public Pass {
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
     const int width = frame.Width(), height = frame.Height();
-    sim::Texture2D<glm::vec4>& colour = FrameTexture(colour_, "smaa-t2x/colour", width, height, sim::Format::RGBA8Srgb);
-    StoreSrgb8(*frame.colour, colour);
+    const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
     sim::Texture2D<glm::vec4>& target = history_.Begin(frame, width, height);
     const sim::Texture2D<glm::vec2>* velocity = history_.Velocity(frame, width, height);
     smaa_.SetSubsampleIndices(T2xSubsampleIndices(frame.frameIndex));
@@ -144,7 +143,6 @@ class T2xPass final : public Pass {
  private:
   Smaa1x smaa_;
   TemporalHistory history_;
-  std::optional<sim::Texture2D<glm::vec4>> colour_;
 };
 
 class FourXPass final : public Pass {
