@@ -189,6 +189,17 @@ std::uint8_t FloatToSrgb8ByCurve(float linear);
 inline float Srgb8ToFloat(std::uint8_t code) { return detail::Srgb().decode[code]; }
 std::uint16_t FloatToHalf(float value);
 float HalfToFloat(std::uint16_t bits);
+// What a float16 store keeps of a float32, read back: HalfToFloat(FloatToHalf(value)). In the
+// half's normal range ([2^-14, 2^16) in magnitude, float32 exponents 113..142) the store's round
+// toward zero is float32's fraction cut to float16's 10 bits, done inline here; zeros, denormals,
+// overflow, infinities and NaN take the conversion itself. Every RGBA16F and RG16F store (the
+// temporal passes' histories and velocities) comes through here.
+[[gnu::always_inline]] inline float QuantizeHalf(float value) {
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
+  const std::uint32_t exponent = bits >> 23 & 0xFFu;
+  if (exponent - 113u <= 142u - 113u) return std::bit_cast<float>(bits & 0xFFFFE000u);
+  return HalfToFloat(FloatToHalf(value));
+}
 std::uint16_t FloatToFloat11(float value);
 float Float11ToFloat(std::uint16_t bits);
 std::uint16_t FloatToFloat10(float value);
@@ -270,6 +281,14 @@ template <FormattableTexel T>
         for (glm::length_t c = 0; c < T::length(); ++c) value[c] = Unorm8ToFloat(static_cast<std::uint8_t>(codes[c]));
         return value;
       }
+    }
+    if (format == Format::RGBA16Float || format == Format::RG16Float) {
+      const int channels = format == Format::RGBA16Float ? 4 : 2;
+      for (int c = 0; c < kTexelComponents<T>; ++c) {
+        const float stored = c == 3 ? 1.0f : 0.0f;  // QuantizeChannel's defaults past the format's channels
+        TexelComponent(value, c) = c < channels ? QuantizeHalf(TexelComponent(value, c)) : stored;
+      }
+      return value;
     }
     for (int c = 0; c < kTexelComponents<T>; ++c) {
       TexelComponent(value, c) = QuantizeChannel(format, c, TexelComponent(value, c));

@@ -259,6 +259,28 @@ TEST(SimFormats, Float11And10StoresRoundTowardZeroAndClampNegativesToZero) {
   EXPECT_EQ(stored, glm::vec4(1.015625f, 1.015625f, 1.0f, 1.0f));
 }
 
+// QuantizeHalf's inline cut against the conversion it stands for, on every float32 whose top 19
+// bits (sign, exponent and float16's fraction) take each value, with the 13 bits the cut drops
+// all clear, all set, and one pattern between: every half, every boundary of the normal range,
+// the denormals, overflow, infinities and NaNs.
+TEST(SimFormats, TheInlineHalfStoreIsTheConversion) {
+  for (std::uint32_t top = 0; top < (1u << 19); ++top) {
+    for (const std::uint32_t low : {0u, 0x1FFFu, 0x0A5Au, 0x1000u}) {
+      const float value = std::bit_cast<float>(top << 13 | low);
+      const float expected = HalfToFloat(FloatToHalf(value));
+      const float actual = QuantizeHalf(value);
+      if (std::isnan(expected)) {
+        ASSERT_TRUE(std::isnan(actual)) << std::hex << (top << 13 | low);
+        continue;
+      }
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(actual), std::bit_cast<std::uint32_t>(expected))
+          << std::hex << (top << 13 | low);
+    }
+  }
+  EXPECT_EQ(Quantize(Format::RGBA16Float, glm::vec4(1.0f + 0x1p-11f, -65504.0f, 1e6f, 0x1p-20f)),
+            glm::vec4(1.0f, -65504.0f, 65504.0f, 0x1p-20f));
+}
+
 // Channels a format lacks read as D3D's defaults; float32 and uint32 keep their values.
 TEST(SimFormats, MissingChannelsReadAsDefaults) {
   EXPECT_EQ(Quantize(Format::R8Unorm, glm::vec4(0.5f, 0.7f, 0.2f, 0.3f)), glm::vec4(Unorm8ToFloat(128), 0, 0, 1));
