@@ -100,7 +100,8 @@ glm::vec4 HistoryFetch::operator()(const sim::LaneBase& lane, int x, int y, glm:
       // each of its texels j reprojected back by the pixel's own offset, F sampled at j + v.
       const glm::vec2 base = glm::floor(previous);
       const glm::vec2 f = previous - base;
-      const auto back = [&](int dx, int dy) {
+      // Forced inline: called, GCC returned each vec4 through the stack.
+      const auto back = [&](int dx, int dy) __attribute__((always_inline)) {
         const glm::vec2 j(std::clamp(static_cast<int>(base.x) + dx, 0, width - 1),
                           std::clamp(static_cast<int>(base.y) + dy, 0, height - 1));
         return forward->SampleBilinear(lane, UvOf(j + v, width, height));
