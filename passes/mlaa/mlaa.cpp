@@ -43,7 +43,7 @@ constexpr sim::KernelInfo kDetectPixel{
     .vgprs = 24, .sgprs = 16, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 100,
     .source = "hand count of passes/mlaa detect: 4 colour fetches' addresses (6), T() on 4 pixels (4 x 4), 3 "
               "pair tests (max |diff| 6, min and compare 3 each: 27), 2 gradient sums on codes (2 x 12), the "
-              "predicated form's 2 depth fetches and tests (~12), the edges and copy stores and the stencil "
+              "predicated form's 4 depth fetches and 3 tests (~16), the edges and copy stores and the stencil "
               "export (~10)"};
 constexpr sim::KernelInfo kDetectCompute{
     .vgprs = 24, .sgprs = 24, .ldsBytesPerGroup = 0, .valuInstructionsPerWave = 108,
@@ -203,29 +203,31 @@ class MlaaPass final : public Pass {
         const glm::vec4 texel = in.Load(lane, x, y);
         copy.Store(lane, x, y, texel);
         const glm::vec3 c(texel);
+        // Each pixel's depth is loaded once, as a shader compiler would merge the repeated load.
+        const auto depthAt = [&](int px, int py) __attribute__((always_inline)) {
+          return z ? z->Load(lane, px, py) : 0.0f;
+        };
+        const float zc = depthAt(x, y);
         // The edge between p0 (upper or left) and p1. Forced inline (GCC's spelling for a lambda):
         // GCC kept it as a call, about a sixth of each detect dispatch (docs/PERFORMANCE.md, "Stop 28").
-        const auto test = [&](glm::ivec2 p0, glm::vec3 c0, glm::ivec2 p1,
-                              glm::vec3 c1) __attribute__((always_inline)) {
-          const bool depthEdge = z && DepthEdge(config, z->Load(lane, p0.x, p0.y), z->Load(lane, p1.x, p1.y));
-          return IsEdge(config, c0, c1, depthEdge);
+        const auto test = [&](glm::vec3 c0, float z0, glm::vec3 c1, float z1) __attribute__((always_inline)) {
+          return IsEdge(config, c0, c1, z && DepthEdge(config, z0, z1));
         };
-        const glm::ivec2 p(x, y);
         glm::vec4 e(0.0f);
         if (y + 1 < height) {
           const glm::vec3 below(in.Load(lane, x, y + 1));
-          if (test(p, c, {x, y + 1}, below)) e = {1.0f, e.y, GradientClass(c, below), e.w};
+          if (test(c, zc, below, depthAt(x, y + 1))) e = {1.0f, e.y, GradientClass(c, below), e.w};
         }
         if (x + 1 < width) {
           const glm::vec3 right(in.Load(lane, x + 1, y));
-          if (test(p, c, {x + 1, y}, right)) e = {e.x, 1.0f, e.z, GradientClass(c, right)};
+          if (test(c, zc, right, depthAt(x + 1, y))) e = {e.x, 1.0f, e.z, GradientClass(c, right)};
         }
         edges.Store(lane, x, y, e);
         // A pixel joins the work set when a line of this pass runs along one of its sides.
         const int u = axis.vertical ? y : x, v = axis.vertical ? x : y;
         const glm::ivec2 prev = axis.Pixel(u, v - 1);
-        const bool prevEdge =
-            prev.x >= 0 && prev.y >= 0 && test(prev, glm::vec3(in.Load(lane, prev.x, prev.y)), p, c);
+        const bool prevEdge = prev.x >= 0 && prev.y >= 0 &&
+                              test(glm::vec3(in.Load(lane, prev.x, prev.y)), depthAt(prev.x, prev.y), c, zc);
         return prevEdge || e[axis.Primary()] > 0.5f;
       };
     };
