@@ -209,8 +209,9 @@ void ResolveFrameOptions(FrameCommandOptions& options) {
 std::uint64_t EstimateFrameBytes(int width, int height, const fmask::EqaaConfig& eqaa,
                                  const passes::PassInfo* pass, std::size_t strategies) {
   const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
-  // Resolved colour, depth, normal, object id, velocity; one shaded colour per quad pixel.
-  const std::uint64_t targets = 2 * sizeof(glm::vec4) + sizeof(float) + sizeof(std::uint32_t) +
+  // Resolved colour and its 8-bit sRGB store, depth, normal, object id, velocity; one shaded
+  // colour per quad pixel.
+  const std::uint64_t targets = 2 * sizeof(glm::vec4) + 4 + sizeof(float) + sizeof(std::uint32_t) +
                                 sizeof(glm::vec2) + sizeof(fmask::Colour);
   const std::uint64_t images = 10 * sizeof(float) + 3;  // frame.exr's channels, colour.png
   // What one run of the pass holds, and its previews (output.png, one byte per layer channel).
