@@ -204,6 +204,19 @@ std::uint16_t FloatToFloat11(float value);
 float Float11ToFloat(std::uint16_t bits);
 std::uint16_t FloatToFloat10(float value);
 float Float10ToFloat(std::uint16_t bits);
+// The same for R11G11B10's unsigned small floats (float16's exponent, 6 or 5 fraction bits):
+// positive normals are cut inline; negatives (stored as 0), zeros, denormals, overflow,
+// infinities and NaN take the conversion. MiniEngine FXAA's colour target stores through here.
+[[gnu::always_inline]] inline float QuantizeFloat11(float value) {
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
+  if ((bits >> 23) - 113u <= 142u - 113u) return std::bit_cast<float>(bits & 0xFFFE0000u);  // sign clear
+  return Float11ToFloat(FloatToFloat11(value));
+}
+[[gnu::always_inline]] inline float QuantizeFloat10(float value) {
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(value);
+  if ((bits >> 23) - 113u <= 142u - 113u) return std::bit_cast<float>(bits & 0xFFFC0000u);
+  return Float10ToFloat(FloatToFloat10(value));
+}
 
 // One channel of a texel in the host representation: what a store of `value` into channel
 // `channel` of `format` keeps, and what a view of `format` reads from what was kept. Channels
@@ -281,6 +294,13 @@ template <FormattableTexel T>
         for (glm::length_t c = 0; c < T::length(); ++c) value[c] = Unorm8ToFloat(static_cast<std::uint8_t>(codes[c]));
         return value;
       }
+    }
+    if (format == Format::R11G11B10Float) {
+      for (int c = 0; c < kTexelComponents<T>; ++c) {
+        const float channel = TexelComponent(value, c);
+        TexelComponent(value, c) = c < 2 ? QuantizeFloat11(channel) : c == 2 ? QuantizeFloat10(channel) : 1.0f;
+      }
+      return value;
     }
     if (format == Format::RGBA16Float || format == Format::RG16Float) {
       const int channels = format == Format::RGBA16Float ? 4 : 2;

@@ -281,6 +281,36 @@ TEST(SimFormats, TheInlineHalfStoreIsTheConversion) {
             glm::vec4(1.0f, -65504.0f, 65504.0f, 0x1p-20f));
 }
 
+// The same for R11G11B10's inline cuts: every float32 pattern of the kept top bits (sign,
+// exponent and 6 or 5 fraction bits) with the dropped bits clear, set, and between.
+TEST(SimFormats, TheInlineFloat11And10StoresAreTheConversions) {
+  struct Small {
+    int fraction;
+    float (*inlined)(float);
+    float (*converted)(float);
+  };
+  const Small smalls[] = {{6, QuantizeFloat11, [](float v) { return Float11ToFloat(FloatToFloat11(v)); }},
+                          {5, QuantizeFloat10, [](float v) { return Float10ToFloat(FloatToFloat10(v)); }}};
+  for (const Small& s : smalls) {
+    const int dropped = 23 - s.fraction;
+    const std::uint32_t ones = (1u << dropped) - 1;
+    for (std::uint32_t top = 0; top < (1u << (32 - dropped)); ++top) {
+      for (const std::uint32_t low : {0u, ones, ones / 3, 1u << (dropped - 1)}) {
+        const std::uint32_t bits = top << dropped | low;
+        const float expected = s.converted(std::bit_cast<float>(bits));
+        const float actual = s.inlined(std::bit_cast<float>(bits));
+        if (std::isnan(expected)) {
+          ASSERT_TRUE(std::isnan(actual)) << std::hex << bits;
+          continue;
+        }
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(actual), std::bit_cast<std::uint32_t>(expected)) << std::hex << bits;
+      }
+    }
+  }
+  EXPECT_EQ(Quantize(Format::R11G11B10Float, glm::vec4(1.0f + 0x1p-7f, -2.0f, 1.0f + 0x1p-6f, 0.5f)),
+            glm::vec4(1.0f, 0.0f, 1.0f, 1.0f));
+}
+
 // Channels a format lacks read as D3D's defaults; float32 and uint32 keep their values.
 TEST(SimFormats, MissingChannelsReadAsDefaults) {
   EXPECT_EQ(Quantize(Format::R8Unorm, glm::vec4(0.5f, 0.7f, 0.2f, 0.3f)), glm::vec4(Unorm8ToFloat(128), 0, 0, 1));
