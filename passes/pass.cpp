@@ -47,6 +47,13 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture) {
   return {std::move(name), {"Y"}, texture.Width(), texture.Height(), {texels.begin(), texels.end()}, {}, 0};
 }
 
+PassLayer MembershipLayer(std::string name, std::span<const std::uint8_t> joined, int width, int height) {
+  AASIM_CHECK_EQ(joined.size(), static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  PassLayer layer{std::move(name), {"Y"}, width, height, std::vector<float>(joined.size()), {}, 0};
+  ByRows(width, height, [&](std::size_t i) { layer.values[i] = joined[i]; });
+  return layer;
+}
+
 PassLayer CodesLayer(std::string name, std::vector<std::string> channels, int width, int height,
                      std::span<const std::uint8_t> codes, int codeChannels, int components) {
   AASIM_CHECK_EQ(channels.size(), static_cast<std::size_t>(components));

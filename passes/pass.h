@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -105,6 +106,9 @@ struct PassLayer {
   std::vector<float> Floats() const;
 };
 
+// A one-channel layer ("Y") of a work set's membership bytes (WorkSet::Membership: 0, or the
+// consume a pixel joined), row-major, converted by rows on the worker threads.
+PassLayer MembershipLayer(std::string name, std::span<const std::uint8_t> joined, int width, int height);
 // A one-channel layer ("Y") holding the texture's values.
 PassLayer LayerOf(std::string name, const sim::Texture2D<float>& texture);
 // A layer of `components` channels from an 8-bit texture's codes, read as k / 255 as its UNORM
@@ -132,7 +136,7 @@ PassLayer LayerOf(std::string name, const sim::Texture2D<glm::vec<N, float>>& te
 // for a frame that did not come from a sim::FramePipeline.
 sim::Texture2D<glm::vec4> Srgb8ColourTarget(std::string name, const sim::Texture2D<glm::vec4>& linear);
 // The frame's 8-bit codes into a target of the pass's own that it then writes in place (CMAA2's
-// deferred apply, FXAA's luma in alpha), as a renderer's CopyResource would.
+// deferred apply, Filmic SMAA's output, TFQ's frame ring), as a renderer's CopyResource would.
 void CopySrgb8Frame(const FrameInputs& frame, sim::Texture2D<glm::vec4>& target);
 // Per-texel host work on a whole frame (conversions, copies), by rows on the worker threads:
 // convert(texel index) does one texel and touches no other, so the result does not depend on the

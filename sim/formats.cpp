@@ -179,10 +179,9 @@ float QuantizeChannel(Format format, int channel, float value) {
     // The texture keeps the encoded code (as code / 255, what a UNORM view reads); alpha is
     // linear in every sRGB format.
     case Format::RGBA8Srgb: return Unorm8ToFloat(channel == 3 ? FloatToUnorm8(value) : FloatToSrgb8(value));
-    case Format::R11G11B10Float:
-      return channel == 2 ? Float10ToFloat(FloatToFloat10(value)) : Float11ToFloat(FloatToFloat11(value));
+    case Format::R11G11B10Float: return channel == 2 ? QuantizeFloat10(value) : QuantizeFloat11(value);
     case Format::RG16Float:
-    case Format::RGBA16Float: return HalfToFloat(FloatToHalf(value));
+    case Format::RGBA16Float: return QuantizeHalf(value);
     case Format::R32Float:
     case Format::R32Uint: return value;
   }

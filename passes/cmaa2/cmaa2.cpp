@@ -272,10 +272,7 @@ PassLayer Cmaa2Pass::EdgesLayer() const {
 }
 
 PassLayer Cmaa2Pass::CandidatesLayer(Strategy strategy) const {
-  const std::vector<std::uint8_t> joined = workSet_.Membership(strategy);
-  PassLayer layer{"candidates", {"Y"}, colour_->Width(), colour_->Height(), std::vector<float>(joined.size()), {}, 0};
-  ByRows(layer.width, layer.height, [&](std::size_t i) { layer.values[i] = joined[i]; });
-  return layer;
+  return MembershipLayer("candidates", workSet_.Membership(strategy), colour_->Width(), colour_->Height());
 }
 
 std::vector<SettingInfo> Settings() {

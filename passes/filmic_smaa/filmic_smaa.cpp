@@ -29,7 +29,7 @@ class FilmicSmaaPass final : public Pass {
     output.SetWorkSet(morphological_.Run(machine, strategy, colour, blended, edges));
     output.colour = DecodedSrgb8("filmic-smaa/output", blended);
     output.layers.push_back(LayerOf("edges", edges, {"R", "G"}));
-    output.layers.push_back(ItemsLayer(morphological_.Membership(strategy), width, height));
+    output.layers.push_back(MembershipLayer("items", morphological_.Membership(strategy), width, height));
     return output;
   }
 

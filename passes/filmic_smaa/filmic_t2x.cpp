@@ -104,10 +104,8 @@ class FilmicT2xPass final : public Pass {
     PassOutput output;
     output.SetWorkSet(shape);
     output.layers.push_back(LayerOf("edges", *edges_, {"R", "G"}));
-    output.layers.push_back(ItemsLayer(items, width, height));
-    PassLayer joined = ItemsLayer(temporalSet_.Membership(strategy), width, height);
-    joined.name = "temporal-edges";
-    output.layers.push_back(std::move(joined));
+    output.layers.push_back(MembershipLayer("items", items, width, height));
+    output.layers.push_back(MembershipLayer("temporal-edges", temporalSet_.Membership(strategy), width, height));
     const sim::Texture2D<glm::vec4>& filtered = Ring(filtered_, frames_);
     output.colour = sim::Texture2D<glm::vec4>(std::string(kPass) + "/output", width, height, 16);
     std::copy(filtered.Texels().begin(), filtered.Texels().end(), output.colour.Texels().begin());

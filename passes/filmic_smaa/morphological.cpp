@@ -96,12 +96,6 @@ Config ConfigOf(const PassSettings& settings) {
   return config;
 }
 
-PassLayer ItemsLayer(const std::vector<std::uint8_t>& membership, int width, int height) {
-  PassLayer layer{"items", {"Y"}, width, height, {}, {}, 0};
-  for (const std::uint8_t joined : membership) layer.values.push_back(joined);
-  return layer;
-}
-
 Morphological::Morphological(std::string_view pass, const smaa::Config& config)
     : detect_(std::string(pass) + "/edge-detection"),
       vertical_(std::string(pass) + "/vertical-edges"),

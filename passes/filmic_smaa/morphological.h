@@ -20,8 +20,6 @@ namespace passes::filmic_smaa {
 
 // SMAA's threshold and search settings (smaa::SearchSettings) as the kernels' configuration.
 smaa::Config ConfigOf(const PassSettings& settings);
-// The "items" layer of a membership (Morphological::Membership).
-PassLayer ItemsLayer(const std::vector<std::uint8_t>& membership, int width, int height);
 
 class Morphological {
  public:

@@ -73,8 +73,8 @@ class FxaaPass final : public Pass {
     const int width = frame.Width(), height = frame.Height();
     params_.width = width;
     params_.height = height;
-    // The pass's render targets, kept across frames as a renderer keeps them.
     const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
+    // The pass's render targets, kept across frames as a renderer keeps them.
     sim::Texture2D<glm::vec4>& rgbl = FrameTexture(rgbl_, "fxaa/rgbl", width, height, sim::Format::RGBA8Unorm);
     sim::Texture2D<glm::vec4>& target = FrameTexture(output_, "fxaa/output", width, height, sim::Format::RGBA8Unorm);
     spans_.assign(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);

@@ -94,7 +94,7 @@ struct Resolver {
     return {Combine(own, previous, n[4]), TfqValidity::Accepted};
   }
 
-  // Inlined: called, GCC returned the vec4 through the stack, 12 % of the tfq resolve's profile.
+  // Inlined: called, GCC returned the vec4 through the stack (docs/PERFORMANCE.md, "Stop 29").
   [[gnu::always_inline]] glm::vec4 LoadAt(const sim::LaneBase& lane, const sim::TextureView<glm::vec4>& view,
                                           glm::ivec2 p) const {
     const glm::ivec2 c = Clamped(p, width, height);

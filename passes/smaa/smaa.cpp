@@ -47,8 +47,8 @@ class SmaaPass final : public Pass {
   const PassInfo& Info() const override { return info_; }
 
   PassOutput Run(sim::Machine& machine, const FrameInputs& frame, Strategy strategy) override {
-    // The output target, kept across frames as a renderer keeps it.
     const sim::Texture2D<glm::vec4>& colour = frame.ColourSrgb8();
+    // The output target, kept across frames as a renderer keeps it.
     sim::Texture2D<glm::vec4>& blended =
         FrameTexture(blended_, "smaa/output", frame.Width(), frame.Height(), sim::Format::RGBA8Srgb);
     PassOutput output;

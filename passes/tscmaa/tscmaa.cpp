@@ -169,10 +169,7 @@ PassOutput TscmaaPass::Run(sim::Machine& machine, const FrameInputs& frame, Stra
   output.colour = DecodedSrgb8("tscmaa/output", write);
   output.layers.push_back(cmaa2_->EdgesLayer());
   output.layers.push_back(cmaa2_->CandidatesLayer(strategy));
-  const std::vector<std::uint8_t> joined = workSet_.Membership(strategy);
-  PassLayer taa{"taa-candidates", {"Y"}, width, height, std::vector<float>(joined.size()), {}, 0};
-  ByRows(width, height, [&](std::size_t i) { taa.values[i] = joined[i]; });
-  output.layers.push_back(std::move(taa));
+  output.layers.push_back(MembershipLayer("taa-candidates", workSet_.Membership(strategy), width, height));
   return output;
 }
 
