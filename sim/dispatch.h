@@ -263,9 +263,21 @@ class Machine {
   void ValidateGroup(const Dispatch& dispatch, glm::ivec3 groupSize) const;
   IndirectLaunch ReadIndirectArguments(Dispatch& dispatch, const IndirectCall& call) const;
   void CountIndirectReads(Dispatch& dispatch, const GroupLimits& limits, detail::ChunkState& first) const;
-  static void CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8_t>& live,
-                         const std::vector<glm::ivec2>& attribution, int wavesPerGroup, std::size_t barriers,
-                         int itemCountSlot);
+  // A group's lanes as CountGroup counts them: which ran, the pixel each is attributed to, the
+  // waves' EXEC masks, and when every lane of the group lies in one heat-map tile, a pixel of it.
+  struct GroupLanes {
+    const std::vector<std::uint8_t>& live;
+    const std::vector<glm::ivec2>& attribution;
+    const std::vector<std::uint64_t>& waveExec;
+    std::optional<glm::ivec2> oneTilePixel;
+  };
+  static void CountGroup(detail::ChunkState& chunk, const GroupLanes& group, std::size_t barriers, int itemCountSlot);
+  static void AddToHeatMap(detail::ChunkState& chunk, const GroupLanes& group);
+  // A pixel-grid group without an item list covers a rectangle of pixels (clipped to the grid):
+  // one of its pixels when the rectangle lies in one tile of `heat`, nothing otherwise.
+  static std::optional<glm::ivec2> OneTilePixel(const Dispatch& dispatch, const GroupLimits& limits,
+                                                glm::ivec3 groupOrigin, glm::ivec3 groupSize, glm::ivec3 threads,
+                                                const TileHeatMap& heat);
   void Finish(Dispatch& dispatch, DispatchReport report, std::vector<detail::ChunkState>& chunks,
                                int threadsPerGroup);
   static void CommitSlots(Dispatch& dispatch, const detail::ChunkState& chunk, DispatchReport& report);

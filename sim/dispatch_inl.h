@@ -261,30 +261,36 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
       lane.localId = {i % groupSize.x, (i / groupSize.x) % groupSize.y, i / (groupSize.x * groupSize.y)};
     }
     const std::size_t end = std::min(groupCount, (chunkIndex + 1) * kGroupsPerChunk);
+    const bool limited = limits.itemCount.has_value() || limits.pixelItems != nullptr;
     for (std::size_t g = chunkIndex * kGroupsPerChunk; g < end; ++g) {
       const auto gi = static_cast<int>(g);
       const glm::ivec3 groupId{gi % groups.x, (gi / groups.x) % groups.y, gi / (groups.x * groups.y)};
       std::fill(chunk.lds.begin(), chunk.lds.end(), std::byte{0});
       std::fill(chunk.privates.begin(), chunk.privates.end(), std::byte{0});
       std::fill(waveExec.begin(), waveExec.end(), std::uint64_t{0});
+      const glm::ivec3 groupOrigin = groupId * groupSize;
+      // A group inside the grid with no item limits runs every lane (most groups of a grid).
+      const bool whole = !limited && glm::all(glm::lessThanEqual(groupOrigin + groupSize, threads));
       for (int i = 0; i < groupThreads; ++i) {
         ComputeLane& lane = lanes[static_cast<std::size_t>(i)];
         lane.groupId = groupId;
-        lane.threadId = groupId * groupSize + lane.localId;
-        const long long linear = lane.threadId.x + static_cast<long long>(launched.x) *
-                                                       (lane.threadId.y + static_cast<long long>(launched.y) * lane.threadId.z);
-        const bool inGrid = glm::all(glm::lessThan(lane.threadId, threads));
-        live[static_cast<std::size_t>(i)] = inGrid && (!limits.itemCount || linear < *limits.itemCount);
+        lane.threadId = groupOrigin + lane.localId;
         lane.pixel = dispatch.pixelGrid_ ? glm::ivec2(lane.threadId) + dispatch.pixelOrigin_ : glm::ivec2(-1);
-        if (limits.pixelItems != nullptr && live[static_cast<std::size_t>(i)]) {
-          const auto at = static_cast<std::size_t>(linear);
-          lane.item = limits.pixelItems->Load(lane, limits.itemsFromBack ? limits.pixelItems->Size() - 1 - at : at);
-          lane.pixel = limits.unpackItem != nullptr ? limits.unpackItem(lane.item) : UnpackPixelItem(lane.item);
+        bool isLive = whole;
+        if (!whole) {
+          const long long linear =
+              lane.threadId.x + static_cast<long long>(launched.x) *
+                                    (lane.threadId.y + static_cast<long long>(launched.y) * lane.threadId.z);
+          isLive = glm::all(glm::lessThan(lane.threadId, threads)) && (!limits.itemCount || linear < *limits.itemCount);
+          if (limits.pixelItems != nullptr && isLive) {
+            const auto at = static_cast<std::size_t>(linear);
+            lane.item = limits.pixelItems->Load(lane, limits.itemsFromBack ? limits.pixelItems->Size() - 1 - at : at);
+            lane.pixel = limits.unpackItem != nullptr ? limits.unpackItem(lane.item) : UnpackPixelItem(lane.item);
+          }
         }
-        attribution[static_cast<std::size_t>(i)] = live[static_cast<std::size_t>(i)] ? lane.pixel : glm::ivec2(-1);
-        if (live[static_cast<std::size_t>(i)]) {
-          waveExec[static_cast<std::size_t>(lane.waveInGroup)] |= std::uint64_t{1} << lane.lane;
-        }
+        live[static_cast<std::size_t>(i)] = isLive;
+        attribution[static_cast<std::size_t>(i)] = isLive ? lane.pixel : glm::ivec2(-1);
+        waveExec[static_cast<std::size_t>(lane.waveInGroup)] |= std::uint64_t{isLive} << lane.lane;
       }
       // Every wave's mask is complete before the first stage runs any lane of it.
       for (int i = 0; i < groupThreads; ++i) {
@@ -296,7 +302,9 @@ void Machine::RunGroups(Dispatch& dispatch, DispatchReport report, glm::ivec3 th
         }
       };
       (runStage(stages), ...);
-      CountGroup(chunk, live, attribution, wavesPerGroup, sizeof...(Stages) - 1, limits.itemCountSlot);
+      const std::optional<glm::ivec2> oneTile =
+          OneTilePixel(dispatch, limits, groupOrigin, groupSize, threads, *chunk.heat);
+      CountGroup(chunk, {live, attribution, waveExec, oneTile}, sizeof...(Stages) - 1, limits.itemCountSlot);
     }
   });
   Finish(dispatch, std::move(report), chunks, groupThreads);

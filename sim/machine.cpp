@@ -180,13 +180,37 @@ void Machine::CountIndirectReads(Dispatch& dispatch, const GroupLimits& limits, 
   }
 }
 
-void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8_t>& live,
-                         const std::vector<glm::ivec2>& attribution, int wavesPerGroup, std::size_t barriers,
+void Machine::CountGroup(detail::ChunkState& chunk, const GroupLanes& group, std::size_t barriers,
                          int itemCountSlot) {
   LaneCounters& counters = chunk.lanes;
   ++counters.groups;
   counters.barriers += barriers;
-  // Active lanes go to the heat map in runs of one tile, one atomic add per run.
+  int groupActive = 0;
+  for (const std::uint64_t exec : group.waveExec) {
+    const int active = std::popcount(exec);
+    groupActive += active;
+    counters.lanesActive += static_cast<std::uint64_t>(active);
+    counters.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes - active);
+    ++counters.waves;
+    counters.lanesLaunched += kWaveLanes;
+    ++counters.wavesByActiveLanes[static_cast<std::size_t>(active)];
+  }
+  if (group.oneTilePixel) {
+    if (groupActive != 0) chunk.heat->Add(group.oneTilePixel->x, group.oneTilePixel->y, LaneKind::Active,
+                                          static_cast<std::uint32_t>(groupActive));
+  } else {
+    AddToHeatMap(chunk, group);
+  }
+  if (itemCountSlot >= 0) {
+    const auto waves = static_cast<std::uint64_t>(group.waveExec.size());
+    ResourceTraffic& traffic = chunk.traffic[static_cast<std::size_t>(itemCountSlot)];
+    traffic.fetches += waves;
+    traffic.bytesRead += 4 * waves;
+  }
+}
+
+// Active lanes go to the heat map in runs of one tile, one atomic add per run.
+void Machine::AddToHeatMap(detail::ChunkState& chunk, const GroupLanes& group) {
   long long runTile = -1;
   std::uint32_t runLanes = 0;
   glm::ivec2 runPixel{0};
@@ -194,33 +218,29 @@ void Machine::CountGroup(detail::ChunkState& chunk, const std::vector<std::uint8
     if (runLanes != 0) chunk.heat->Add(runPixel.x, runPixel.y, LaneKind::Active, runLanes);
     runLanes = 0;
   };
-  for (int wave = 0; wave < wavesPerGroup; ++wave) {
-    int active = 0;
-    for (int lane = 0; lane < kWaveLanes; ++lane) {
-      const auto i = static_cast<std::size_t>(wave * kWaveLanes + lane);
-      if (i >= live.size() || live[i] == 0) continue;
-      ++active;
-      const long long tile = chunk.heat->TileOf(attribution[i].x, attribution[i].y);
-      if (tile < 0) continue;
-      if (tile != runTile) {
-        flush();
-        runTile = tile;
-        runPixel = attribution[i];
-      }
-      ++runLanes;
+  for (std::size_t i = 0; i < group.live.size(); ++i) {
+    if (group.live[i] == 0) continue;
+    const long long tile = chunk.heat->TileOf(group.attribution[i].x, group.attribution[i].y);
+    if (tile < 0) continue;
+    if (tile != runTile) {
+      flush();
+      runTile = tile;
+      runPixel = group.attribution[i];
     }
-    counters.lanesActive += static_cast<std::uint64_t>(active);
-    counters.lanesDeadEmpty += static_cast<std::uint64_t>(kWaveLanes - active);
-    ++counters.waves;
-    counters.lanesLaunched += kWaveLanes;
-    ++counters.wavesByActiveLanes[static_cast<std::size_t>(active)];
+    ++runLanes;
   }
   flush();
-  if (itemCountSlot >= 0) {
-    ResourceTraffic& traffic = chunk.traffic[static_cast<std::size_t>(itemCountSlot)];
-    traffic.fetches += static_cast<std::uint64_t>(wavesPerGroup);
-    traffic.bytesRead += 4 * static_cast<std::uint64_t>(wavesPerGroup);
-  }
+}
+
+std::optional<glm::ivec2> Machine::OneTilePixel(const Dispatch& dispatch, const GroupLimits& limits,
+                                                glm::ivec3 groupOrigin, glm::ivec3 groupSize, glm::ivec3 threads,
+                                                const TileHeatMap& heat) {
+  if (!dispatch.pixelGrid_ || limits.pixelItems != nullptr) return std::nullopt;
+  const glm::ivec2 first = glm::ivec2(groupOrigin) + dispatch.pixelOrigin_;
+  const glm::ivec2 last = glm::ivec2(glm::min(groupOrigin + groupSize, threads)) - 1 + dispatch.pixelOrigin_;
+  const long long tile = heat.TileOf(first.x, first.y);
+  if (tile < 0 || heat.TileOf(last.x, last.y) != tile) return std::nullopt;
+  return first;
 }
 
 void Machine::InitPixelLanes(detail::ChunkState& chunk, const PixelTargets& targets,

@@ -320,6 +320,42 @@ TEST(SimDispatch, TrafficCountsRequestsAndDistinctLines) {
   EXPECT_FLOAT_EQ(r.heat.Utilization(3, 5), 1.0f);
 }
 
+// A compute group whose pixels lie in one tile adds its active lanes to the heat map at once;
+// any other group adds lane by lane. Either way each tile holds the live lanes whose pixel it
+// contains, counted here directly: groups aligned to tiles and not, pixel origins off the tile
+// grid, grids ending mid-group and pixels past the map.
+TEST(SimDispatch, ComputeHeatMapsCountEveryLiveLaneInItsPixelsTile) {
+  Machine machine = TestMachine();
+  const glm::ivec3 threads{37, 29, 2};
+  const glm::ivec2 map{40, 30};
+  for (const glm::ivec3 groupSize : {glm::ivec3{8, 8, 1}, glm::ivec3{4, 4, 2}, glm::ivec3{16, 16, 1},
+                                     glm::ivec3{5, 3, 1}, glm::ivec3{64, 1, 1}, glm::ivec3{8, 4, 2}}) {
+    for (const glm::ivec2 origin : {glm::ivec2{0, 0}, glm::ivec2{8, 8}, glm::ivec2{3, 5}, glm::ivec2{6, 0}}) {
+      Dispatch d("test/heat", SmallKernel());
+      d.SetPixelGrid(map.x, map.y, origin);
+      const DispatchReport& r = machine.Compute(d, {.threads = threads, .groupSize = groupSize}, [](ComputeLane&) {});
+      std::vector<std::uint32_t> expected(static_cast<std::size_t>(r.heat.TilesX() * r.heat.TilesY()), 0);
+      for (int z = 0; z < threads.z; ++z) {
+        for (int y = 0; y < threads.y; ++y) {
+          for (int x = 0; x < threads.x; ++x) {
+            const glm::ivec2 pixel = glm::ivec2(x, y) + origin;
+            if (pixel.x >= map.x || pixel.y >= map.y) continue;
+            ++expected[static_cast<std::size_t>(pixel.y / sim::kTileSize * r.heat.TilesX() + pixel.x / sim::kTileSize)];
+          }
+        }
+      }
+      for (int ty = 0; ty < r.heat.TilesY(); ++ty) {
+        for (int tx = 0; tx < r.heat.TilesX(); ++tx) {
+          EXPECT_EQ(r.heat.Active(tx, ty), expected[static_cast<std::size_t>(ty * r.heat.TilesX() + tx)])
+              << "group " << groupSize.x << "x" << groupSize.y << "x" << groupSize.z << ", origin " << origin.x << ","
+              << origin.y << ", tile " << tx << "," << ty;
+        }
+      }
+      EXPECT_EQ(r.lanes.lanesActive, static_cast<std::uint64_t>(threads.x) * threads.y * threads.z);
+    }
+  }
+}
+
 TEST(SimDispatch, OutOfRangeUavStoresAreDroppedAndCountedPerResource) {
   Machine machine = TestMachine();
   Texture2D<float> target("target", 6, 5, 4, 0.0f);
