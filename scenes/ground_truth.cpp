@@ -563,6 +563,12 @@ GroundTruthImage RenderGroundTruth(const Scene& scene, const Camera& camera, con
   ValidateSettings(camera, settings);
   ValidateScene(scene);
 
+  // Embree sets flush-to-zero and denormals-are-zero on this thread around its BVH build and runs
+  // the build through oneTBB. When that is the thread's first oneTBB work, oneTBB sets up the
+  // thread's arena inside that window and applies its float settings to every later parallel loop
+  // of the thread: the machine and the passes would flush denormals after a rendered ground truth
+  // and not after a cached one. An empty loop first sets the arena up under the caller's settings.
+  tbb::parallel_for(0, 1, [](int) {});
   EmbreeErrors errors;
   const DeviceHandle device(rtcNewDevice(nullptr));
   if (!device) throw std::runtime_error(ErrorPrefix() + "cannot create an Embree device");

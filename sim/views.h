@@ -61,6 +61,34 @@ inline ResourceTraffic& Traffic(const LaneBase& lane, int slot) {
 }
 }  // namespace detail
 
+namespace detail {
+// The float filter's lerps, x then y: (t00 (1 - fx) + t10 fx) (1 - fy) + (t01 (1 - fx) + t11 fx) fy.
+// A vec4 is blended as one 4-float vector: each lane is the same float32 multiply and add as the
+// per-channel code (no contraction, -ffp-contract=off), in a quarter of the instructions; GCC
+// does not vectorise glm's per-component operators here (docs/PERFORMANCE.md, "Stop 31").
+template <typename T>
+[[gnu::always_inline]] inline T BilinearBlend(const T& t00, const T& t10, const T& t01, const T& t11, glm::vec2 f) {
+  if constexpr (std::is_same_v<T, glm::vec4>) {
+    using Floats = float __attribute__((vector_size(16)));
+    const auto load = [](const glm::vec4& v) {
+      Floats out;
+      std::memcpy(&out, &v, sizeof(out));
+      return out;
+    };
+    const Floats top = load(t00) * (1.0f - f.x) + load(t10) * f.x;
+    const Floats bottom = load(t01) * (1.0f - f.x) + load(t11) * f.x;
+    const Floats blended = top * (1.0f - f.y) + bottom * f.y;
+    glm::vec4 result;
+    std::memcpy(&result, &blended, sizeof(result));
+    return result;
+  } else {
+    const T top = t00 * (1.0f - f.x) + t10 * f.x;
+    const T bottom = t01 * (1.0f - f.x) + t11 * f.x;
+    return top * (1.0f - f.y) + bottom * f.y;
+  }
+}
+}  // namespace detail
+
 // How samplers address texels outside [0, 1): clamp to the edge, or wrap (glTF's default).
 enum class AddressMode : std::uint8_t { Clamp, Repeat };
 
@@ -132,7 +160,7 @@ class TextureView {
     return Decoded(index);
   }
   // uv in [0, 1] spans the texture; outside it the address mode applies.
-  T SamplePoint(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
+  [[gnu::always_inline]] T SamplePoint(const LaneBase& lane, glm::vec2 uv, AddressMode mode = AddressMode::Clamp,
                 glm::ivec2 offset = {0, 0}) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 1);
@@ -165,9 +193,8 @@ class TextureView {
     // At a texel centre the lerps return the first texel exactly when every texel is finite, as
     // 8-bit texels always are; the footprint is still fetched.
     if (f.x == 0.0f && f.y == 0.0f && codes_ != nullptr) return Decoded(Index(xa, ya));
-    const T top = Decoded(Index(xa, ya)) * (1.0f - f.x) + Decoded(Index(x1, ya)) * f.x;
-    const T bottom = Decoded(Index(xa, y1)) * (1.0f - f.x) + Decoded(Index(x1, y1)) * f.x;
-    return top * (1.0f - f.y) + bottom * f.y;
+    return detail::BilinearBlend(Decoded(Index(xa, ya)), Decoded(Index(x1, ya)), Decoded(Index(xa, y1)),
+                                 Decoded(Index(x1, y1)), f);
   }
   // The four texels of the bilinear footprint, one channel (0..3 = R..A; channels the format
   // lacks read 0, alpha 1), in D3D's gather4 order ("counter clockwise order starting with the

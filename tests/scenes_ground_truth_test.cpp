@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -21,13 +23,16 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+#include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/parallel_for.h>
 
 #include "scenes/ground_truth.h"
 #include "scenes/normals.h"
@@ -376,6 +381,30 @@ TEST(GroundTruth, ResultsDoNotDependOnTheThreadCount) {
   const auto edges = std::count(one.edge.begin(), one.edge.end(), std::uint8_t{1});
   EXPECT_GT(edges, 100);
   EXPECT_GT(std::count(one.coverage.begin(), one.coverage.end(), 1.0f), 500);
+}
+
+// Embree turns on flush-to-zero and denormals-are-zero in the thread that builds its BVH, and
+// oneTBB's arena for a thread keeps the float settings the thread had when the arena was set up,
+// applying them to every task it runs. A thread whose first oneTBB work was Embree's build would
+// then flush denormals in all its later parallel loops (the machine's, the passes', the metrics'):
+// a pass's output would depend on whether the ground truth was rendered or read from the cache.
+// The render runs on a new thread, whose arena does not exist yet, as a fresh process's would not.
+TEST(GroundTruth, LeavesParallelLoopsAfterItWithDenormals) {
+  const scenes::Scene scene = scenes::MakeBuiltinScene(scenes::kDefaultSceneName, 16.0f / 9.0f);
+  std::atomic<int> flushed{0};
+  std::atomic<int> chunks{0};
+  std::thread([&] {
+    RenderGroundTruth(scene, GroundTruthSettingsFor(128, 72, 4));
+    volatile float denormal = 1e-40f;
+    tbb::parallel_for(tbb::blocked_range<int>(0, 512, 1), [&](const tbb::blocked_range<int>&) {
+      // Long enough that every worker takes some of the range.
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      if (denormal * 1.0f == 0.0f) flushed.fetch_add(1);
+      chunks.fetch_add(1);
+    });
+  }).join();
+  EXPECT_GT(chunks.load(), 0);
+  EXPECT_EQ(flushed.load(), 0) << "of " << chunks.load() << " chunks";
 }
 
 TEST(GroundTruth, ProgressIsReportedUpToExactlyOne) {

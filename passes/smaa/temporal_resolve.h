@@ -42,7 +42,7 @@ class TemporalResolve {
       : metrics_(metrics), current_(std::move(current)), previous_(std::move(previous)),
         velocity_(std::move(velocity)), weightScale_(weightScale) {}
 
-  glm::vec4 operator()(const sim::LaneBase& lane, int x, int y) const {
+  [[gnu::always_inline]] glm::vec4 operator()(const sim::LaneBase& lane, int x, int y) const {
     const glm::vec2 uv = metrics_.Texcoord(x, y);
     if (!velocity_) return Lerp(current_.SamplePoint(lane, uv), previous_.SamplePoint(lane, uv), 0.5f);
     // "Velocity is assumed to be calculated for motion blur, so we need to inverse it."
