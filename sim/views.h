@@ -59,13 +59,12 @@ inline ResourceTraffic& Traffic(const LaneBase& lane, int slot) {
   AASIM_DCHECK_LT(static_cast<std::size_t>(slot), lane.chunk->traffic.size());
   return lane.chunk->traffic[static_cast<std::size_t>(slot)];
 }
-}  // namespace detail
 
-namespace detail {
 // The float filter's lerps, x then y: (t00 (1 - fx) + t10 fx) (1 - fy) + (t01 (1 - fx) + t11 fx) fy.
 // A vec4 is blended as one 4-float vector: each lane is the same float32 multiply and add as the
-// per-channel code (no contraction, -ffp-contract=off), in a quarter of the instructions; GCC
-// does not vectorise glm's per-component operators here (docs/PERFORMANCE.md, "Stop 31").
+// per-channel code (no contraction, -ffp-contract=off), the lerps in a quarter of the
+// instructions; GCC does not vectorise glm's per-component operators here (docs/PERFORMANCE.md,
+// "Stop 31"; SimViews.TheVectorBlendIsThePerChannelBlend).
 template <typename T>
 [[gnu::always_inline]] inline T BilinearBlend(const T& t00, const T& t10, const T& t01, const T& t11, glm::vec2 f) {
   if constexpr (std::is_same_v<T, glm::vec4>) {
