@@ -343,7 +343,7 @@ void EqaaSurface::UpdatePixel(const raster::QuadFragment& quad, int quadPixel, c
     ++counters.fragmentsRejected;
     if (event) note("incoming fragment claims no sample");
   }
-  FreeUnreferenced(ref, counters, note);
+  FreeUnreferenced(ref, counters, event);
 
   FmaskElement element = 0;
   for (int s = 0; s < samples; ++s) element = layout_.WithCode(element, s, ref.owner[s]);
@@ -364,7 +364,7 @@ int EqaaSurface::AcquireSlot(PixelRef& ref, const std::array<int, raster::kMaxCo
   auto note = [&](const std::string& line) {
     if (event) event->steps.push_back(line);
   };
-  FreeUnreferenced(ref, counters, note);
+  FreeUnreferenced(ref, counters, event);
   for (int k = 0; k < ref.fragments; ++k) {
     if (!ref.slots[k].occupied) return k;
   }
@@ -387,13 +387,15 @@ int EqaaSurface::AcquireSlot(PixelRef& ref, const std::array<int, raster::kMaxCo
   return victim;
 }
 
-template <typename Note>
-void EqaaSurface::FreeUnreferenced(PixelRef& ref, FragmentCounters& counters, Note&& note) {
+// The trace line is built only when tracing, as every other step's: slots are freed often (about
+// 3 million times in the 7.8 million pixel updates of 2CylinderEngine.glb at 1080p, 8S/4Z/2F),
+// and building the line costs a heap allocation.
+void EqaaSurface::FreeUnreferenced(PixelRef& ref, FragmentCounters& counters, TraceEvent* event) {
   for (int k = 0; k < ref.fragments; ++k) {
     if (!ref.slots[k].occupied || ref.Count(k) > 0) continue;
     ref.slots[k].occupied = false;
     ++counters.fragmentsRemoved;
-    note("slot " + std::to_string(k) + " freed: no sample references it");
+    if (event) event->steps.push_back("slot " + std::to_string(k) + " freed: no sample references it");
   }
 }
 

@@ -214,8 +214,7 @@ class EqaaSurface {
   int AcquireSlot(detail::PixelRef& ref, const std::array<int, raster::kMaxCoverageSamples>& before,
                   const detail::PixelClaims& claims, int quadVictim, FragmentCounters& counters,
                   TraceEvent* event);
-  template <typename Note>
-  void FreeUnreferenced(detail::PixelRef& ref, FragmentCounters& counters, Note&& note);
+  void FreeUnreferenced(detail::PixelRef& ref, FragmentCounters& counters, TraceEvent* event);
   void Initialise(InitialState initial, Colour clearColour);
 
   int width_, height_;

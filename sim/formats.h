@@ -399,12 +399,12 @@ struct FixedPointCoord {
   int texel;   // left (or top) texel of the footprint, before offsets and addressing
   int weight;  // 0..255, weight of the right (or bottom) texel in 1/256
 };
+// The product's clamp, 2^30: the rounded value stays inside int.
+inline constexpr float kFixedPointProductLimit = 1073741824.0f;
 // `scale` is the texture's size times 256 as a float (exact: size * 256 <= 2^22).
 [[gnu::always_inline]] inline FixedPointCoord ToFixedPointCoordScaled(float normalised, float scale) {
-  // Clamping the product to +-2^30 keeps the rounded value inside int. NaN takes the coordinate
-  // 0 (a NaN coordinate is undefined in D3D). Three selects, no branch: every bilinear fetch of
-  // an 8-bit texture converts two coordinates.
-  constexpr float kLimit = 1073741824.0f;
+  // NaN takes the coordinate 0 (a NaN coordinate is undefined in D3D).
+  constexpr float kLimit = kFixedPointProductLimit;
   float scaled = normalised * scale;
   scaled = scaled == scaled ? scaled : 0.0f;
   scaled = scaled > -kLimit ? scaled : -kLimit;
@@ -416,6 +416,28 @@ struct FixedPointCoord {
   const int s = static_cast<int>(std::lrint(scaled)) - 128;
 #endif
   return {s >> 8, s & 255};
+}
+// Both coordinates of a bilinear fetch at once: the same product, NaN rule, clamp and
+// round-to-nearest-even as ToFixedPointCoordScaled, lane by lane (SimSampling tests the two
+// against each other). SSE's max(a, b) and min(a, b) are a > b ? a : b and a < b ? a : b, the
+// selects above, so the clamp is the same even at the limits; one vector conversion replaces
+// two scalar ones and their compare-and-branch pairs in every 8-bit bilinear fetch.
+struct FixedPointCoords {
+  FixedPointCoord x, y;
+};
+[[gnu::always_inline]] inline FixedPointCoords ToFixedPointCoordsScaled(glm::vec2 normalised, glm::vec2 scale) {
+#if defined(__SSE2__)
+  __m128 scaled = _mm_mul_ps(_mm_setr_ps(normalised.x, normalised.y, 0.0f, 0.0f), _mm_setr_ps(scale.x, scale.y, 0.0f, 0.0f));
+  scaled = _mm_and_ps(scaled, _mm_cmpord_ps(scaled, scaled));
+  scaled = _mm_min_ps(_mm_max_ps(scaled, _mm_set1_ps(-kFixedPointProductLimit)),
+                      _mm_set1_ps(kFixedPointProductLimit));
+  const __m128i s = _mm_sub_epi32(_mm_cvtps_epi32(scaled), _mm_set1_epi32(128));
+  const __m128i texels = _mm_srai_epi32(s, 8), weights = _mm_and_si128(s, _mm_set1_epi32(255));
+  return {{_mm_cvtsi128_si32(texels), _mm_cvtsi128_si32(weights)},
+          {_mm_cvtsi128_si32(_mm_shuffle_epi32(texels, 1)), _mm_cvtsi128_si32(_mm_shuffle_epi32(weights, 1))}};
+#else
+  return {ToFixedPointCoordScaled(normalised.x, scale.x), ToFixedPointCoordScaled(normalised.y, scale.y)};
+#endif
 }
 inline FixedPointCoord ToFixedPointCoord(float normalised, int size) {
   static_assert(raster::kMaxDimension * 256 < (1 << 24));

@@ -185,9 +185,8 @@ class TextureView {
     const glm::vec2 texel = uv * glm::vec2(width_, height_) - 0.5f;
     const glm::vec2 base = glm::floor(texel);
     const glm::vec2 f = texel - base;
-    const int x0 = static_cast<int>(base.x) + offset.x, y0 = static_cast<int>(base.y) + offset.y;
-    const int x1 = Address(x0 + 1, width_, mode), y1 = Address(y0 + 1, height_, mode);
-    const int xa = Address(x0, width_, mode), ya = Address(y0, height_, mode);
+    const auto [xa, x1] = AddressPair(static_cast<int>(base.x) + offset.x, width_, mode);
+    const auto [ya, y1] = AddressPair(static_cast<int>(base.y) + offset.y, height_, mode);
     TouchFootprint(xa, x1, ya, y1);
     // At a texel centre the lerps return the first texel exactly when every texel is finite, as
     // 8-bit texels always are; the footprint is still fetched.
@@ -206,10 +205,8 @@ class TextureView {
     if (channel < 0 || channel > 3) detail::ThrowBadTexelArgument(lane, "gather channel outside 0..3");
     CountFetch(lane, 4);
     const glm::vec2 texel = uv * glm::vec2(width_, height_) - 0.5f;
-    const int x0 = static_cast<int>(std::floor(texel.x)) + offset.x;
-    const int y0 = static_cast<int>(std::floor(texel.y)) + offset.y;
-    const int u0 = Address(x0, width_, mode), u1 = Address(x0 + 1, width_, mode);
-    const int v0 = Address(y0, height_, mode), v1 = Address(y0 + 1, height_, mode);
+    const auto [u0, u1] = AddressPair(static_cast<int>(std::floor(texel.x)) + offset.x, width_, mode);
+    const auto [v0, v1] = AddressPair(static_cast<int>(std::floor(texel.y)) + offset.y, height_, mode);
     const auto pick = [&](int x, int y) -> TexelScalar<T> {
       const std::size_t index = Index(x, y);
       TouchTexel(index);
@@ -248,6 +245,12 @@ class TextureView {
     if (mode == AddressMode::Clamp) [[likely]] return std::clamp(i, 0, size - 1);
     return Wrap(i, size);
   }
+  // A footprint's two columns (or rows) i and i + 1 after addressing. Away from the edges they
+  // are themselves in every mode: one unsigned compare instead of two clamps (or wraps).
+  [[gnu::always_inline]] static std::pair<int, int> AddressPair(int i, int size, AddressMode mode) {
+    if (static_cast<unsigned>(i) < static_cast<unsigned>(size - 1)) [[likely]] return {i, i + 1};
+    return {Address(i, size, mode), Address(i + 1, size, mode)};
+  }
   // Out of line: inlined, the compiler computes the division for every clamped coordinate too.
   [[gnu::noinline]] static int Wrap(int i, int size) {
     const int r = i % size;
@@ -261,11 +264,9 @@ class TextureView {
                                                 glm::ivec2 offset) const {
     detail::CheckTexelOffset(lane, offset);
     CountFetch(lane, 4);
-    const FixedPointCoord cx = ToFixedPointCoordScaled(uv.x, fixedScale_.x);
-    const FixedPointCoord cy = ToFixedPointCoordScaled(uv.y, fixedScale_.y);
-    const int x0 = cx.texel + offset.x, y0 = cy.texel + offset.y;
-    const int xa = Address(x0, width_, mode), x1 = Address(x0 + 1, width_, mode);
-    const int ya = Address(y0, height_, mode), y1 = Address(y0 + 1, height_, mode);
+    const auto [cx, cy] = ToFixedPointCoordsScaled(uv, fixedScale_);
+    const auto [xa, x1] = AddressPair(cx.texel + offset.x, width_, mode);
+    const auto [ya, y1] = AddressPair(cy.texel + offset.y, height_, mode);
     TouchFootprint(xa, x1, ya, y1);
     // At a texel centre both weights are 0 and every lerp returns its first code: the stored
     // texel. The footprint is still fetched and counted.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -137,6 +138,68 @@ TEST(SimSampling, ANanCoordinateFiltersAsCoordinateZero) {
   }
   EXPECT_EQ(ToFixedPointCoord(0.0f, 7).texel, -1);
   EXPECT_EQ(ToFixedPointCoord(0.0f, 7).weight, 128);
+}
+
+// The float filter and gather4 against a direct reference: the footprint from floor(u w - 0.5)
+// with each of its texels addressed alone, the lerps x then y. Coordinates cover the edges and
+// beyond, with offsets and both modes, on sizes down to one texel, where the footprint's two
+// columns (or rows) are the same texel.
+TEST(SimSampling, FloatFilterAndGatherAddressEveryTexelOfTheFootprint) {
+  for (const glm::ivec2 size : {glm::ivec2(1, 1), glm::ivec2(1, 5), glm::ivec2(2, 3), glm::ivec2(7, 5)}) {
+    Texture2D<float> texture("random", size.x, size.y, Format::R32Float);
+    std::mt19937 rng(static_cast<std::uint32_t>(size.x * 31 + size.y));
+    std::uniform_real_distribution<float> value(-4.0f, 4.0f), coordinate(-1.3f, 2.3f);
+    std::uniform_int_distribution<int> offset(kMinTexelOffset, kMaxTexelOffset);
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) texture.Set(x, y, value(rng));
+    }
+    OnOneLane<float>(texture, [&](const TextureView<float>& view, const ComputeLane& lane) {
+      for (int i = 0; i < 5000; ++i) {
+        const glm::vec2 uv(coordinate(rng), coordinate(rng));
+        const glm::ivec2 o = i % 2 == 0 ? glm::ivec2(0) : glm::ivec2(offset(rng), offset(rng));
+        const AddressMode mode = i % 3 == 0 ? AddressMode::Repeat : AddressMode::Clamp;
+        const glm::vec2 texel = uv * glm::vec2(size) - 0.5f;
+        const glm::vec2 base = glm::floor(texel), f = texel - base;
+        const int x0 = static_cast<int>(base.x) + o.x, y0 = static_cast<int>(base.y) + o.y;
+        const auto at = [&](int x, int y) { return texture.Get(Wrap(x, size.x, mode), Wrap(y, size.y, mode)); };
+        const float top = at(x0, y0) * (1.0f - f.x) + at(x0 + 1, y0) * f.x;
+        const float bottom = at(x0, y0 + 1) * (1.0f - f.x) + at(x0 + 1, y0 + 1) * f.x;
+        ASSERT_EQ(view.SampleBilinearFloat(lane, uv, mode, o), top * (1.0f - f.y) + bottom * f.y)
+            << size.x << "x" << size.y << " uv " << uv.x << "," << uv.y << " offset " << o.x << "," << o.y;
+        const glm::vec4 gathered(at(x0, y0 + 1), at(x0 + 1, y0 + 1), at(x0 + 1, y0), at(x0, y0));
+        ASSERT_EQ(view.Gather(lane, uv, 0, o, mode), gathered)
+            << size.x << "x" << size.y << " uv " << uv.x << "," << uv.y << " offset " << o.x << "," << o.y;
+      }
+    });
+  }
+}
+
+// The fetch converts both coordinates in one vector; each lane must be the scalar conversion,
+// at the clamp limits, on rounding ties, for NaN, infinities, signed zeros and denormals, and on
+// random bit patterns.
+TEST(SimSampling, BothCoordinatesConvertAsEachAlone) {
+  const float limit = kFixedPointProductLimit;
+  std::vector<float> values = {0.0f, -0.0f, 0.5f, 1.0f, -1.0f, 1e-45f, -1e-45f, 1e30f, -1e30f,
+                               limit, -limit, std::nextafter(limit, 0.0f), std::nextafter(-limit, 0.0f),
+                               std::nextafter(limit, 2 * limit), std::nextafter(-limit, -2 * limit),
+                               std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                               std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN()};
+  for (int k = -1024; k <= 1024; ++k) values.push_back(static_cast<float>(k) / 512.0f);  // ties at 1/512
+  std::mt19937 rng(11);
+  for (int i = 0; i < 200000; ++i) values.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(rng())));
+  std::uniform_int_distribution<std::size_t> pick(0, values.size() - 1);
+  for (const int size : {1, 7, 1920, 16384}) {
+    const float scale = static_cast<float>(size * 256);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const glm::vec2 uv(values[i], values[pick(rng)]);
+      const FixedPointCoords both = ToFixedPointCoordsScaled(uv, glm::vec2(scale, 3.0f * scale));
+      const FixedPointCoord x = ToFixedPointCoordScaled(uv.x, scale), y = ToFixedPointCoordScaled(uv.y, 3.0f * scale);
+      ASSERT_EQ(both.x.texel, x.texel) << uv.x << " size " << size;
+      ASSERT_EQ(both.x.weight, x.weight) << uv.x << " size " << size;
+      ASSERT_EQ(both.y.texel, y.texel) << uv.y << " size " << size;
+      ASSERT_EQ(both.y.weight, y.weight) << uv.y << " size " << size;
+    }
+  }
 }
 
 // With 8 fractional bits the weight is k/256, not a float: a quarter of the way from code 0 to
