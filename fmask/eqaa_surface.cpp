@@ -387,9 +387,9 @@ int EqaaSurface::AcquireSlot(PixelRef& ref, const std::array<int, raster::kMaxCo
   return victim;
 }
 
-// The trace line is built only when tracing, as every other step's: slots are freed often (about
-// 3 million times in the 7.8 million pixel updates of 2CylinderEngine.glb at 1080p, 8S/4Z/2F),
-// and building the line costs a heap allocation.
+// The trace line is built only when tracing, as every other step's: slots are freed often (in 39 %
+// of the pixel updates of 2CylinderEngine.glb at 1080p, 8S/4Z/2F: counters fragments/removed and
+// pixels/updates), and building the line costs heap allocations.
 void EqaaSurface::FreeUnreferenced(PixelRef& ref, FragmentCounters& counters, TraceEvent* event) {
   for (int k = 0; k < ref.fragments; ++k) {
     if (!ref.slots[k].occupied || ref.Count(k) > 0) continue;
