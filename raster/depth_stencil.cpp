@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <string>
 
 #include "raster/raster_error.h"
@@ -65,6 +66,10 @@ bool StencilPasses(CompareFunc func, std::uint8_t ref, std::uint8_t mask, std::u
   return Compare<int>(func, ref & mask, value & mask);
 }
 
+void AddStencilValue(std::array<std::uint64_t, 4>& values, std::uint8_t value) {
+  values[value >> 6] |= std::uint64_t{1} << (value & 63u);
+}
+
 }  // namespace
 
 template <typename Fn>
@@ -85,6 +90,7 @@ DepthStencilSurface::DepthStencilSurface(const DepthSurfaceConfig& config, Sampl
   anchorDepth_.resize(pixels * config_.depthSamples);
   stencil_.resize(pixels);
   FindNearestAnchors();
+  BuildPretestTables();
   Clear(config_.clearDepth, config_.clearStencil);
 }
 
@@ -119,14 +125,27 @@ void DepthStencilSurface::Clear(float depth, std::uint8_t stencil) {
   // Plane indices and anchored depth are not touched: a Cleared tile reads as the clear depth
   // without them, and they are (re)initialised when the tile first leaves that state.
   std::fill(stencil_.begin(), stencil_.end(), stencil);
-  for (int ty = 0; ty < tilesY_; ++ty) {
-    for (int tx = 0; tx < tilesX_; ++tx) RefreshHiStencil(tx, ty);
+  StencilValues cleared{};
+  AddStencilValue(cleared, stencil);
+  for (ZTile& tile : tiles_) SetHiStencilBits(tile, cleared);
+}
+
+void DepthStencilSurface::BuildPretestTables() {
+  for (std::size_t k = 0; k < kHiStencilPretests; ++k) {
+    const HiStencilPretest& pretest = config_.hiStencil[k];
+    StencilValues& passes = pretestPasses_[k];
+    passes = {};
+    for (int value = 0; value < 256; ++value) {
+      const auto code = static_cast<std::uint8_t>(value);
+      if (StencilPasses(pretest.func, pretest.ref, pretest.mask, code)) AddStencilValue(passes, code);
+    }
   }
 }
 
 void DepthStencilSurface::SetHiStencilPretests(
     const std::array<HiStencilPretest, kHiStencilPretests>& pretests) {
   config_.hiStencil = pretests;
+  BuildPretestTables();
   for (int ty = 0; ty < tilesY_; ++ty) {
     for (int tx = 0; tx < tilesX_; ++tx) RefreshHiStencil(tx, ty);
   }
@@ -190,22 +209,49 @@ bool DepthStencilSurface::HiStencilRejects(int tx, int ty, const StencilState& s
   return false;
 }
 
-void DepthStencilSurface::RefreshHiStencil(int tx, int ty) {
-  ZTile& tile = tiles_[TileIndex(tx, ty)];
-  for (int k = 0; k < kHiStencilPretests; ++k) {
-    const HiStencilPretest& pretest = config_.hiStencil[k];
+DepthStencilSurface::StencilValues DepthStencilSurface::TileStencilValues(int tx, int ty) const {
+  static_assert(kTileSize == 8, "a tile row is compared as one 8-byte word");
+  StencilValues present{};
+  const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+  // Most tiles hold one value (a cleared surface; a pass's stencil mask away from its edges), so
+  // a whole tile's rows are first compared 8 bytes at a time with its first pixel's.
+  if (x0 + kTileSize <= config_.width) {
+    const std::uint8_t first = stencil_[static_cast<std::size_t>(PixelIndex(x0, y0))];
+    const std::uint64_t everyByte = first * std::uint64_t{0x0101010101010101};
+    bool uniform = true;
+    for (int y = y0; y < std::min(y0 + kTileSize, config_.height) && uniform; ++y) {
+      std::uint64_t row = 0;
+      std::memcpy(&row, &stencil_[static_cast<std::size_t>(PixelIndex(x0, y))], sizeof(row));
+      uniform = row == everyByte;
+    }
+    if (uniform) {
+      AddStencilValue(present, first);
+      return present;
+    }
+  }
+  ForEachTilePixel(tx, ty, [&](int x, int y) {
+    AddStencilValue(present, stencil_[static_cast<std::size_t>(PixelIndex(x, y))]);
+  });
+  return present;
+}
+
+// Some pixel may pass a pretest when a value the tile holds passes it, and may fail when a value
+// it holds fails it.
+void DepthStencilSurface::SetHiStencilBits(ZTile& tile, const StencilValues& present) const {
+  for (std::size_t k = 0; k < kHiStencilPretests; ++k) {
     bool mayPass = false, mayFail = false;
-    for (int y = ty * kTileSize; y < std::min((ty + 1) * kTileSize, config_.height); ++y) {
-      for (int x = tx * kTileSize; x < std::min((tx + 1) * kTileSize, config_.width); ++x) {
-        const bool pass = StencilPasses(pretest.func, pretest.ref, pretest.mask, stencil_[PixelIndex(x, y)]);
-        mayPass |= pass;
-        mayFail |= !pass;
-      }
+    for (std::size_t word = 0; word < present.size(); ++word) {
+      mayPass |= (present[word] & pretestPasses_[k][word]) != 0;
+      mayFail |= (present[word] & ~pretestPasses_[k][word]) != 0;
     }
     tile.stencilMayPass[k] = mayPass;
     tile.stencilMayFail[k] = mayFail;
   }
   tile.hiStencilStale = false;
+}
+
+void DepthStencilSurface::RefreshHiStencil(int tx, int ty) {
+  SetHiStencilBits(tiles_[TileIndex(tx, ty)], TileStencilValues(tx, ty));
 }
 
 PixelDepthResult DepthStencilSurface::TestPixel(int x, int y, SampleMask covered,

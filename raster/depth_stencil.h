@@ -171,9 +171,17 @@ class DepthStencilSurface {
   void ForEachTilePixel(int tx, int ty, Fn&& fn) const;
   void CompactPlanes(int tx, int ty);
   void DecompressTile(int tx, int ty);
+  // One bit per 8-bit stencil value.
+  using StencilValues = std::array<std::uint64_t, 4>;
+  void BuildPretestTables();
+  StencilValues TileStencilValues(int tx, int ty) const;
+  void SetHiStencilBits(ZTile& tile, const StencilValues& present) const;
   void RefreshHiStencil(int tx, int ty);
 
   DepthSurfaceConfig config_;
+  // The values each hi-stencil pretest passes, built when the pretests are set: a tile's bits
+  // then come from the set of values its pixels hold, not from a compare per pixel.
+  std::array<StencilValues, kHiStencilPretests> pretestPasses_{};
   SamplePattern pattern_;
   int tilesX_ = 0, tilesY_ = 0;
   std::vector<ZTile> tiles_;

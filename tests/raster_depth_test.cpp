@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -499,6 +500,78 @@ TEST(HiStencil, RejectsTilesWhereNoPixelCanPass) {
     EXPECT_EQ(c.tilesHiStencilRejected, pretest ? 8u : 0u);
     EXPECT_EQ(c.samplesDepthPassed, 8u * 64u * 4u);
     EXPECT_EQ(c.samplesStencilPassed, 8u * 64u * 4u);
+  }
+}
+
+// D3D's stencil test, (ref & mask) FUNC (value & mask), written out per function.
+bool ReferenceStencilPasses(CompareFunc func, int ref, int mask, int value) {
+  const int a = ref & mask, b = value & mask;
+  switch (func) {
+    case CompareFunc::Never: return false;
+    case CompareFunc::Less: return a < b;
+    case CompareFunc::Equal: return a == b;
+    case CompareFunc::LessEqual: return a <= b;
+    case CompareFunc::Greater: return a > b;
+    case CompareFunc::NotEqual: return a != b;
+    case CompareFunc::GreaterEqual: return a >= b;
+    case CompareFunc::Always: return true;
+  }
+  return false;
+}
+
+// A tile is rejected exactly when none of its pixels passes the matching pretest, whatever the
+// tile holds: one value, one value but one pixel, a few values or noise; whole and partial tiles;
+// pretests set before or after the stencil writes (the bits are then refreshed when read).
+TEST(HiStencil, TileRejectionIsThatOfAPerPixelTest) {
+  Random rng(0x5713);
+  for (const auto& [width, height] : {std::pair{16, 16}, std::pair{24, 8}, std::pair{21, 13}, std::pair{5, 3}}) {
+    for (int trial = 0; trial < 60; ++trial) {
+      DepthStencilSurface surface = MakeDepthSurface(width, height, 1, 1, 4);
+      std::array<HiStencilPretest, kHiStencilPretests> pretests{};
+      for (HiStencilPretest& pretest : pretests) {
+        pretest = {true, static_cast<CompareFunc>(rng.Int(0, 7)), static_cast<std::uint8_t>(rng.Int(0, 3)),
+                   static_cast<std::uint8_t>(rng.Int(0, 1) == 0 ? 0xFF : rng.Int(0, 255))};
+      }
+      const bool pretestsFirst = trial % 2 == 0;
+      if (pretestsFirst) surface.SetHiStencilPretests(pretests);
+      std::vector<int> stencil(static_cast<std::size_t>(width * height));
+      const int tilesX = (width + 7) / 8, tilesY = (height + 7) / 8;
+      for (int ty = 0; ty < tilesY; ++ty) {
+        for (int tx = 0; tx < tilesX; ++tx) {
+          const int kind = rng.Int(0, 3), base = rng.Int(0, 3);
+          const int oddX = tx * 8 + rng.Int(0, 7), oddY = ty * 8 + rng.Int(0, 7);
+          for (int y = ty * 8; y < std::min(ty * 8 + 8, height); ++y) {
+            for (int x = tx * 8; x < std::min(tx * 8 + 8, width); ++x) {
+              int value = base;
+              if (kind == 1 && x == oddX && y == oddY) value = base ^ 1;
+              if (kind == 2) value = rng.Int(0, 3);
+              if (kind == 3) value = rng.Int(0, 255);
+              stencil[static_cast<std::size_t>(y * width + x)] = value;
+              surface.SetStencil(x, y, static_cast<std::uint8_t>(value));
+            }
+          }
+        }
+      }
+      if (!pretestsFirst) surface.SetHiStencilPretests(pretests);
+      for (int ty = 0; ty < tilesY; ++ty) {
+        for (int tx = 0; tx < tilesX; ++tx) {
+          for (const HiStencilPretest& pretest : pretests) {
+            bool anyPasses = false;
+            for (int y = ty * 8; y < std::min(ty * 8 + 8, height); ++y) {
+              for (int x = tx * 8; x < std::min(tx * 8 + 8, width); ++x) {
+                anyPasses |= ReferenceStencilPasses(pretest.func, pretest.ref, pretest.mask,
+                                                    stencil[static_cast<std::size_t>(y * width + x)]);
+              }
+            }
+            const StencilState test{true, pretest.func, pretest.ref, pretest.mask, 0, StencilOp::Keep, StencilOp::Keep,
+                                    StencilOp::Keep};
+            EXPECT_EQ(surface.HiStencilRejects(tx, ty, test), !anyPasses)
+                << width << "x" << height << " trial " << trial << " tile (" << tx << ", " << ty << ") func "
+                << static_cast<int>(pretest.func) << " ref " << int{pretest.ref} << " mask " << int{pretest.mask};
+          }
+        }
+      }
+    }
   }
 }
 
