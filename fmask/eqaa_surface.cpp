@@ -361,9 +361,6 @@ void EqaaSurface::UpdatePixel(const raster::QuadFragment& quad, int quadPixel, c
 // otherwise the arbitration victim, whose remaining samples become UNKNOWN.
 int EqaaSurface::AcquireSlot(PixelRef& ref, const std::array<int, raster::kMaxCoverageSamples>& before,
                              const PixelClaims& c, int quadVictim, FragmentCounters& counters, TraceEvent* event) {
-  auto note = [&](const std::string& line) {
-    if (event) event->steps.push_back(line);
-  };
   FreeUnreferenced(ref, counters, event);
   for (int k = 0; k < ref.fragments; ++k) {
     if (!ref.slots[k].occupied) return k;
@@ -381,9 +378,12 @@ int EqaaSurface::AcquireSlot(PixelRef& ref, const std::array<int, raster::kMaxCo
   }
   ++counters.evictions;
   ref.slots[victim].occupied = false;
-  if (event) event->victim = victim;
-  if (event) note("evict slot " + std::to_string(victim) + " (primitive " + std::to_string(ref.slots[victim].primitiveId) +
-       ", counted " + std::to_string(counts[victim]) + " samples); UNKNOWN: " + SampleList(evicted));
+  if (event) {
+    event->victim = victim;
+    event->steps.push_back("evict slot " + std::to_string(victim) + " (primitive " +
+                           std::to_string(ref.slots[victim].primitiveId) + ", counted " +
+                           std::to_string(counts[victim]) + " samples); UNKNOWN: " + SampleList(evicted));
+  }
   return victim;
 }
 

@@ -404,11 +404,10 @@ inline constexpr float kFixedPointProductLimit = 1073741824.0f;
 // `scale` is the texture's size times 256 as a float (exact: size * 256 <= 2^22).
 [[gnu::always_inline]] inline FixedPointCoord ToFixedPointCoordScaled(float normalised, float scale) {
   // NaN takes the coordinate 0 (a NaN coordinate is undefined in D3D).
-  constexpr float kLimit = kFixedPointProductLimit;
   float scaled = normalised * scale;
   scaled = scaled == scaled ? scaled : 0.0f;
-  scaled = scaled > -kLimit ? scaled : -kLimit;
-  scaled = scaled < kLimit ? scaled : kLimit;
+  scaled = scaled > -kFixedPointProductLimit ? scaled : -kFixedPointProductLimit;
+  scaled = scaled < kFixedPointProductLimit ? scaled : kFixedPointProductLimit;
 #if defined(__SSE__) || defined(__x86_64__)
   // cvtss2si: lrint's rounding (the current mode, to nearest even) without its library call.
   const int s = _mm_cvtss_si32(_mm_set_ss(scaled)) - 128;
